@@ -1,0 +1,194 @@
+# uuvsim: one GNU Makefile, no generator.
+#
+#   make               host programs, fixed and float builds (build/linux-*)
+#   make firmware      Cortex-M images for every machine and build (build/cortexm-*)
+#   make test          installs missing tools, builds everything, runs every test
+#   make check-tables  exhaustive error of the sine and triangle tables
+#   make run           the main job (see README.md)
+#
+# The numeric build and the port are chosen here, by -D options and include
+# paths; src/ never tests for a platform.
+
+.SUFFIXES:
+MAKEFLAGS += --no-builtin-rules
+.DEFAULT_GOAL := all
+
+BUILD ?= build
+CC ?= gcc
+ifeq ($(origin CC),default)
+CC := gcc
+endif
+CLANG ?= clang
+ARM_CC ?= arm-none-eabi-gcc
+ARM_SIZE ?= arm-none-eabi-size
+
+# ---- Flags shared by every compiler and port ------------------------------
+
+WARN := -Wall -Wextra -Wpedantic -Wconversion -Wdouble-promotion -Wshadow -Werror
+COMMON := -std=c99 $(WARN) -ffp-contract=off -MMD -MP
+INC := -Isrc -Itests/harness -I$(BUILD)/gen
+
+comma := ,
+NUM_fixed := 1
+NUM_float := 2
+
+# ---- Sources --------------------------------------------------------------
+
+SRC_C := $(sort $(wildcard src/*.c src/*/*.c src/*/*/*.c))
+TEST_C := tests/harness/ut.c tests/harness/runner.c $(sort $(wildcard tests/unit/test_*.c))
+SUITES := $(patsubst tests/unit/test_%.c,%,$(sort $(wildcard tests/unit/test_*.c)))
+LINUX_PORT_C := $(sort $(wildcard ports/linux/hal_*.c))
+CORTEXM_PORT_C := ports/cortexm/startup.c ports/cortexm/hal_cortexm.c \
+                  ports/cortexm/semihost.c ports/cortexm/libc_min.c
+
+# The list of suites, rewritten only when it changes.
+$(BUILD)/gen/suites.inc: FORCE
+	@mkdir -p $(@D)
+	@printf '%s\n' $(foreach s,$(SUITES),'UT_SUITE($(s))') > $@.tmp
+	@cmp -s $@.tmp $@ || mv $@.tmp $@
+	@rm -f $@.tmp
+
+.PHONY: FORCE
+FORCE:
+
+# ---- Host variants --------------------------------------------------------
+# $(call host_variant,NAME,COMPILER,NUMERIC,EXTRA_CFLAGS,EXTRA_LDFLAGS)
+
+define host_variant
+$(1)_DIR := $(BUILD)/$(1)
+$(1)_CFLAGS := $(COMMON) $(4) -DUUV_NUMERIC=$(NUM_$(3)) $(INC) -Iports/linux
+$(1)_SRC_O := $$(patsubst %.c,$$($(1)_DIR)/obj/%.o,$(SRC_C) $(LINUX_PORT_C))
+$(1)_TEST_O := $$(patsubst %.c,$$($(1)_DIR)/obj/%.o,$(TEST_C))
+$(1)_FAIL_O := $$(filter-out %/test_harness.o,$$($(1)_TEST_O)) $$($(1)_DIR)/obj-mustfail/test_harness.o
+
+$$($(1)_DIR)/obj/%.o: %.c | $(BUILD)/gen/suites.inc
+	@mkdir -p $$(@D)
+	$(2) $$($(1)_CFLAGS) -c $$< -o $$@
+
+$$($(1)_DIR)/obj-mustfail/test_harness.o: tests/unit/test_harness.c
+	@mkdir -p $$(@D)
+	$(2) $$($(1)_CFLAGS) -DUT_PROVE_FAILURE -c $$< -o $$@
+
+$$($(1)_DIR)/obj/tests/harness/runner.o: $(BUILD)/gen/suites.inc
+
+$$($(1)_DIR)/unit_tests: $$($(1)_SRC_O) $$($(1)_TEST_O)
+	$(2) $(5) -o $$@ $$^ -lm
+
+$$($(1)_DIR)/unit_tests_mustfail: $$($(1)_SRC_O) $$($(1)_FAIL_O)
+	$(2) $(5) -o $$@ $$^ -lm
+
+-include $$(wildcard $$($(1)_DIR)/obj/*/*.d $$($(1)_DIR)/obj/*/*/*.d $$($(1)_DIR)/obj/*/*/*/*.d)
+HOST_VARIANTS += $(1)
+endef
+
+HOST_OPT := -O2 -g
+SAN_FLAGS := -O1 -g -fsanitize=address,undefined -fno-sanitize-recover=all -fno-omit-frame-pointer
+
+$(eval $(call host_variant,linux-fixed,$(CC),fixed,$(HOST_OPT),))
+$(eval $(call host_variant,linux-float,$(CC),float,$(HOST_OPT),))
+$(eval $(call host_variant,linux-fixed-san,$(CC),fixed,$(SAN_FLAGS),-fsanitize=address$(comma)undefined))
+$(eval $(call host_variant,linux-float-san,$(CC),float,$(SAN_FLAGS),-fsanitize=address$(comma)undefined))
+$(eval $(call host_variant,linux-clang-fixed,$(CLANG),fixed,$(HOST_OPT),))
+$(eval $(call host_variant,linux-clang-float,$(CLANG),float,$(HOST_OPT),))
+
+# ---- Cortex-M variants ----------------------------------------------------
+# $(call fw_variant,MACHINE,NUMERIC,CPU_FLAGS,HAS_FPU,BOARD_SOURCE)
+
+ARM_COMMON := $(COMMON) -O2 -g -ffreestanding -fno-tree-loop-distribute-patterns \
+              -ffunction-sections -fdata-sections -fstack-usage
+
+define fw_variant
+$(1)-$(2)_DIR := $(BUILD)/cortexm-$(1)-$(2)
+$(1)-$(2)_CFLAGS := $(ARM_COMMON) $(3) -DUUV_NUMERIC=$(NUM_$(2)) -DUUV_TARGET_HAS_FPU=$(4) \
+    -DBOARD_NAME='"$(1)"' $(INC) -Iports/cortexm
+$(1)-$(2)_LDFLAGS := $(3) -nostdlib -Wl,--gc-sections -Lldscripts -Tldscripts/$(1).ld
+$(1)-$(2)_SRC_O := $$(patsubst %.c,$$($(1)-$(2)_DIR)/obj/%.o,$(SRC_C) $(CORTEXM_PORT_C) $(5))
+$(1)-$(2)_TEST_O := $$(patsubst %.c,$$($(1)-$(2)_DIR)/obj/%.o,$(TEST_C))
+$(1)-$(2)_FAIL_O := $$(filter-out %/test_harness.o,$$($(1)-$(2)_TEST_O)) \
+    $$($(1)-$(2)_DIR)/obj-mustfail/test_harness.o
+
+$$($(1)-$(2)_DIR)/obj/%.o: %.c | $(BUILD)/gen/suites.inc
+	@mkdir -p $$(@D)
+	$(ARM_CC) $$($(1)-$(2)_CFLAGS) -c $$< -o $$@
+
+$$($(1)-$(2)_DIR)/obj-mustfail/test_harness.o: tests/unit/test_harness.c
+	@mkdir -p $$(@D)
+	$(ARM_CC) $$($(1)-$(2)_CFLAGS) -DUT_PROVE_FAILURE -c $$< -o $$@
+
+$$($(1)-$(2)_DIR)/obj/tests/harness/runner.o: $(BUILD)/gen/suites.inc
+
+$$($(1)-$(2)_DIR)/unit_tests.elf: $$($(1)-$(2)_SRC_O) $$($(1)-$(2)_TEST_O) ldscripts/$(1).ld
+	$(ARM_CC) $$($(1)-$(2)_LDFLAGS) -Wl,-Map=$$(@:.elf=.map) -o $$@ \
+	    $$(filter %.o,$$^) -lgcc
+
+$$($(1)-$(2)_DIR)/unit_tests_mustfail.elf: $$($(1)-$(2)_SRC_O) $$($(1)-$(2)_FAIL_O) ldscripts/$(1).ld
+	$(ARM_CC) $$($(1)-$(2)_LDFLAGS) -o $$@ $$(filter %.o,$$^) -lgcc
+
+-include $$(wildcard $$($(1)-$(2)_DIR)/obj/*/*.d $$($(1)-$(2)_DIR)/obj/*/*/*.d \
+    $$($(1)-$(2)_DIR)/obj/*/*/*/*.d)
+FW_VARIANTS += $(1)-$(2)
+FW_IMAGES += $$($(1)-$(2)_DIR)/unit_tests.elf
+endef
+
+CPU_M3 := -mcpu=cortex-m3 -mthumb -mfloat-abi=soft
+CPU_M4F := -mcpu=cortex-m4 -mthumb -mfpu=fpv4-sp-d16 -mfloat-abi=hard
+CPU_M7 := -mcpu=cortex-m7 -mthumb -mfpu=fpv5-d16 -mfloat-abi=hard
+
+$(eval $(call fw_variant,mps2-an385,fixed,$(CPU_M3),0,ports/cortexm/board_mps2.c))
+$(eval $(call fw_variant,mps2-an386,fixed,$(CPU_M4F),1,ports/cortexm/board_mps2.c))
+$(eval $(call fw_variant,mps2-an386,float,$(CPU_M4F),1,ports/cortexm/board_mps2.c))
+$(eval $(call fw_variant,mps2-an500,fixed,$(CPU_M7),1,ports/cortexm/board_mps2.c))
+$(eval $(call fw_variant,mps2-an500,float,$(CPU_M7),1,ports/cortexm/board_mps2.c))
+
+# ---- Host tools (may use libc and libm) -----------------------------------
+
+TOOL_CFLAGS := $(COMMON) -O2 -g -Isrc
+
+$(BUILD)/tools/check_tables: tools/check_tables.c $(wildcard src/fixedpoint/*.c)
+	@mkdir -p $(@D)
+	$(CC) $(TOOL_CFLAGS) -o $@ $^ -lm
+
+$(BUILD)/tools/gen_wavetables: tools/gen_wavetables.c
+	@mkdir -p $(@D)
+	$(CC) $(TOOL_CFLAGS) -o $@ $^ -lm
+
+$(BUILD)/tools/test_math_libm: tests/host/test_math_libm.c $(wildcard src/math/*.c)
+	@mkdir -p $(@D)
+	$(CC) $(TOOL_CFLAGS) -fno-builtin -o $@ $^ -lm
+
+HOST_TOOLS := $(BUILD)/tools/check_tables $(BUILD)/tools/test_math_libm
+
+# ---- Top-level targets ----------------------------------------------------
+
+.PHONY: all firmware host-all tools test test-run check-tables run clean deps
+
+all: $(BUILD)/linux-fixed/unit_tests $(BUILD)/linux-float/unit_tests
+
+host-all: $(foreach v,$(HOST_VARIANTS),$(BUILD)/$(v)/unit_tests) \
+          $(BUILD)/linux-fixed/unit_tests_mustfail
+
+firmware: $(FW_IMAGES) $(BUILD)/cortexm-mps2-an385-fixed/unit_tests_mustfail.elf
+
+tools: $(HOST_TOOLS)
+
+check-tables: $(BUILD)/tools/check_tables
+	@$(BUILD)/tools/check_tables
+
+deps:
+	@sh tools/ensure-deps.sh
+
+# Tools first (they may be missing on a fresh machine), then the rest in a
+# second make, so that nothing is compiled before the compilers exist.
+test: deps
+	@$(MAKE) --no-print-directory test-run
+
+test-run: host-all firmware tools
+	@HOST_VARIANTS="$(HOST_VARIANTS)" FW_VARIANTS="$(FW_VARIANTS)" BUILD="$(BUILD)" \
+	    sh tools/run-tests.sh
+
+run:
+	@echo "make run: the desk simulator is not built yet (it lands with the vessel and"
+	@echo "drive models); 'make test' runs what exists."
+
+clean:
+	rm -rf $(BUILD)

@@ -1,0 +1,26 @@
+/*
+ * What differs between the supported machines, behind one small interface:
+ * each machine links exactly one board_*.c (the Makefile chooses it).
+ */
+#ifndef UUV_BOARD_H
+#define UUV_BOARD_H
+
+#include <stddef.h>
+#include <stdint.h>
+
+/* Machine name, as reports print it. */
+extern const char board_name[];
+
+/* Brings up what the HAL needs: the free-running counter and the UART. */
+void board_init(void);
+
+/* [Hz] clock of SysTick (the processor clock). */
+uint32_t board_systick_hz(void);
+
+/* Free-running up-counter at board_systick_hz(); wraps modulo 2^32. */
+uint32_t board_counter(void);
+
+/* Writes bytes to the machine's first UART (blocking). */
+void board_uart_write(const uint8_t *data, size_t n);
+
+#endif /* UUV_BOARD_H */

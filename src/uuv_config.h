@@ -1,0 +1,43 @@
+/*
+ * Build configuration of uuvsim: the numeric build and every option that a
+ * build may choose, in one place. The build passes -D options; everything
+ * not passed takes the default below. Impossible combinations stop the
+ * build here, so that no source file needs to test for them.
+ */
+#ifndef UUV_CONFIG_H
+#define UUV_CONFIG_H
+
+/* Numeric builds of the fast models (PWM, inverter, motor, controller). */
+#define UUV_NUMERIC_FIXED 1 /* integer arithmetic in per-unit Q formats */
+#define UUV_NUMERIC_FLOAT 2 /* IEEE single precision */
+
+#ifndef UUV_NUMERIC
+#define UUV_NUMERIC UUV_NUMERIC_FIXED
+#endif
+
+#if (UUV_NUMERIC != UUV_NUMERIC_FIXED) && (UUV_NUMERIC != UUV_NUMERIC_FLOAT)
+#error "UUV_NUMERIC must be UUV_NUMERIC_FIXED (1) or UUV_NUMERIC_FLOAT (2)"
+#endif
+
+/*
+ * Whether the target has a single-precision FPU. The port sets it (through
+ * its build flags); a host always has one. The float build on a core without
+ * an FPU would run the 2 us path in software floating point, which can never
+ * meet its deadline, so it is refused rather than built.
+ */
+#ifndef UUV_TARGET_HAS_FPU
+#define UUV_TARGET_HAS_FPU 1
+#endif
+
+#if (UUV_NUMERIC == UUV_NUMERIC_FLOAT) && (UUV_TARGET_HAS_FPU == 0)
+#error "the float build needs a target with a single-precision FPU; use UUV_NUMERIC_FIXED"
+#endif
+
+/* Name of the numeric build, as reports print it. */
+#if UUV_NUMERIC == UUV_NUMERIC_FIXED
+#define UUV_NUMERIC_NAME "fixed"
+#else
+#define UUV_NUMERIC_NAME "float"
+#endif
+
+#endif /* UUV_CONFIG_H */

@@ -1,0 +1,64 @@
+/*
+ * The HAL contract as every port must keep it: periodic fast ticks, the
+ * medium tick released by the fast one, a counter that advances, nesting
+ * critical sections. Runs unchanged on the host's virtual-time loop and on
+ * the Cortex-M interrupts.
+ */
+#include "hal/hal.h"
+#include "ut.h"
+
+void suite_hal(void);
+
+static volatile uint32_t fast_count;
+static volatile uint32_t medium_count;
+
+static void fast_tick(void) {
+    fast_count++;
+    if (fast_count % 5u == 0u) {
+        hal_medium_release();
+    }
+}
+
+static void medium_tick(void) { medium_count++; }
+
+void suite_hal(void) {
+    UT_TEST("ticks: a period the timer cannot make is refused");
+    hal_ticks_config bad = {0u, fast_tick, medium_tick};
+    UT_CHECK(!hal_ticks_start(&bad));
+    UT_CHECK(!hal_ticks_start(NULL));
+
+    UT_TEST("ticks: fast ticks run and release one medium tick per five");
+    fast_count = 0u;
+    medium_count = 0u;
+    hal_ticks_config cfg = {100000u, fast_tick, medium_tick};
+    uint32_t c0 = hal_cycles();
+    UT_CHECK(hal_ticks_start(&cfg));
+    for (uint32_t guard = 0; guard < 1000000u && fast_count < 100u; guard++) {
+        hal_wait_for_tick();
+    }
+    hal_ticks_stop();
+    uint32_t f = fast_count;
+    uint32_t m = medium_count;
+    UT_CHECK(f >= 100u);
+    UT_CHECK(m + 1u >= f / 5u && m <= f / 5u);
+    uint32_t elapsed = hal_cycles() - c0;
+    UT_CHECK(elapsed > 0u);
+    ut_info("%u fast, %u medium ticks; counter advanced by %u", (unsigned)f, (unsigned)m,
+            (unsigned)elapsed);
+
+    UT_TEST("ticks: nothing runs after hal_ticks_stop");
+    uint32_t before = fast_count;
+    for (int i = 0; i < 1000; i++) {
+        hal_critical_enter();
+        hal_critical_exit();
+    }
+    UT_EQ_INT(fast_count, before);
+
+    UT_TEST("critical sections nest");
+    hal_critical_enter();
+    hal_critical_enter();
+    hal_critical_exit();
+    hal_critical_exit();
+    hal_critical_exit(); /* one too many is harmless */
+    UT_CHECK(1);
+}

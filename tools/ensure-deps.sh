@@ -1,0 +1,28 @@
+#!/bin/sh
+# Installs the tools `make test` needs when they are missing: the Arm
+# cross compiler, QEMU for Arm, clang. As root on a Debian-like machine it
+# installs them; otherwise it prints the command to run and fails.
+set -u
+
+missing=""
+need() { command -v "$1" >/dev/null 2>&1 || missing="$missing $2"; }
+need arm-none-eabi-gcc gcc-arm-none-eabi
+need qemu-system-arm qemu-system-arm
+need clang clang
+need gnuplot gnuplot-nox
+
+[ -z "$missing" ] && exit 0
+
+cmd="apt-get install -y --no-install-recommends$missing"
+if [ "$(id -u)" = "0" ] && command -v apt-get >/dev/null 2>&1; then
+    echo "installing:$missing"
+    export DEBIAN_FRONTEND=noninteractive
+    apt-get update -qq >/dev/null && $cmd >/dev/null || {
+        echo "error: '$cmd' failed" >&2
+        exit 1
+    }
+    exit 0
+fi
+echo "error: missing tools:$missing" >&2
+echo "install them with:  sudo apt-get update && sudo $cmd" >&2
+exit 1

@@ -1,0 +1,76 @@
+#!/bin/sh
+# Runs every test program the build made, on the host and under QEMU, and
+# prints one line per run, then the total as "N passed, N failed".
+# Each run's full output is kept in $BUILD/test-logs/. A run counts as failed
+# when its exit status is not 0 or its last line reports a failure; the
+# must-fail programs must fail, which proves that a failing check is seen.
+set -u
+BUILD=${BUILD:-build}
+logs="$BUILD/test-logs"
+mkdir -p "$logs"
+total_pass=0
+total_fail=0
+runs_bad=0
+QEMU_TIMEOUT=${QEMU_TIMEOUT:-600}
+
+qemu_cmd() { # machine image
+    echo "timeout $QEMU_TIMEOUT qemu-system-arm -M $1 -display none -serial none -monitor none" \
+         "-chardev stdio,id=sh0 -semihosting-config enable=on,target=native,chardev=sh0" \
+         "-kernel $2"
+}
+
+# run LABEL EXPECT(pass|fail) COMMAND...
+run() {
+    label=$1; expect=$2; shift 2
+    log="$logs/$(echo "$label" | tr ' /' '__').log"
+    start=$(date +%s)
+    "$@" >"$log" 2>&1 </dev/null
+    status=$?
+    secs=$(( $(date +%s) - start ))
+    counts=$(grep -E '^([A-Za-z]+: )?[0-9]+ passed, [0-9]+ failed' "$log" | tail -n 1)
+    p=$(echo "$counts" | sed -n 's/.*\b\([0-9][0-9]*\) passed.*/\1/p')
+    f=$(echo "$counts" | sed -n 's/.* \([0-9][0-9]*\) failed.*/\1/p')
+    p=${p:-0}; f=${f:-0}
+    if [ "$expect" = pass ]; then
+        if [ $status -eq 0 ] && [ "$f" -eq 0 ] && [ -n "$counts" ]; then
+            verdict=ok
+        else
+            verdict=FAILED; runs_bad=$((runs_bad + 1))
+            [ "$f" -eq 0 ] && f=1
+        fi
+        total_pass=$((total_pass + p)); total_fail=$((total_fail + f))
+    else
+        # A must-fail run passes when the program failed and said so.
+        if [ $status -ne 0 ] && [ "$f" -gt 0 ]; then
+            verdict="ok (failed as it must, exit $status)"
+            total_pass=$((total_pass + 1))
+        else
+            verdict="FAILED (a failing check went unseen)"
+            runs_bad=$((runs_bad + 1)); total_fail=$((total_fail + 1))
+        fi
+    fi
+    printf '%-44s %-26s %4ss  %s\n' "$label" "${counts:-no result line}" "$secs" "$verdict"
+    if [ "$verdict" = FAILED ]; then
+        grep -E 'FAIL|fatal|error' "$log" | head -n 20 | sed 's/^/    /'
+    fi
+}
+
+echo "== host =="
+for v in $HOST_VARIANTS; do
+    run "host $v unit_tests" pass "$BUILD/$v/unit_tests"
+done
+run "host linux-fixed must-fail" fail "$BUILD/linux-fixed/unit_tests_mustfail"
+run "host math vs libm" pass "$BUILD/tools/test_math_libm"
+run "host check_tables (exhaustive)" pass "$BUILD/tools/check_tables"
+
+echo "== qemu =="
+for v in $FW_VARIANTS; do
+    machine=${v%-*}
+    run "qemu $v unit_tests" pass $(qemu_cmd "$machine" "$BUILD/cortexm-$v/unit_tests.elf")
+done
+run "qemu mps2-an385-fixed must-fail" fail \
+    $(qemu_cmd mps2-an385 "$BUILD/cortexm-mps2-an385-fixed/unit_tests_mustfail.elf")
+
+echo "logs in $logs/"
+echo "$total_pass passed, $total_fail failed"
+[ $runs_bad -eq 0 ]
