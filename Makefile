@@ -38,6 +38,7 @@ SRC_C := $(sort $(wildcard src/*.c src/*/*.c src/*/*/*.c))
 TEST_C := tests/harness/ut.c tests/harness/runner.c $(sort $(wildcard tests/unit/test_*.c))
 SUITES := $(patsubst tests/unit/test_%.c,%,$(sort $(wildcard tests/unit/test_*.c)))
 LINUX_PORT_C := $(sort $(wildcard ports/linux/hal_*.c))
+UUVSIM_C := ports/linux/uuvsim.c ports/linux/cli.c ports/linux/csv_out.c ports/linux/derivs.c
 CORTEXM_PORT_C := ports/cortexm/startup.c ports/cortexm/hal_cortexm.c \
                   ports/cortexm/semihost.c ports/cortexm/libc_min.c
 
@@ -56,14 +57,19 @@ FORCE:
 
 define host_variant
 $(1)_DIR := $(BUILD)/$(1)
-$(1)_CFLAGS := $(COMMON) $(4) -DUUV_NUMERIC=$(NUM_$(3)) $(INC) -Iports/linux
+$(1)_CFLAGS := $(COMMON) $(4) -DUUV_NUMERIC=$(NUM_$(3)) -D_POSIX_C_SOURCE=200809L $(INC) \
+    -Iports/linux
 $(1)_SRC_O := $$(patsubst %.c,$$($(1)_DIR)/obj/%.o,$(SRC_C) $(LINUX_PORT_C))
 $(1)_TEST_O := $$(patsubst %.c,$$($(1)_DIR)/obj/%.o,$(TEST_C))
+$(1)_UUVSIM_O := $$(patsubst %.c,$$($(1)_DIR)/obj/%.o,$(UUVSIM_C))
 $(1)_FAIL_O := $$(filter-out %/test_harness.o,$$($(1)_TEST_O)) $$($(1)_DIR)/obj-mustfail/test_harness.o
+
+# src/ is compiled freestanding on the host too, which proves it needs no libc.
+$$($(1)_DIR)/obj/src/%.o: XFLAGS := -ffreestanding
 
 $$($(1)_DIR)/obj/%.o: %.c | $(BUILD)/gen/suites.inc
 	@mkdir -p $$(@D)
-	$(2) $$($(1)_CFLAGS) -c $$< -o $$@
+	$(2) $$($(1)_CFLAGS) $$(XFLAGS) -c $$< -o $$@
 
 $$($(1)_DIR)/obj-mustfail/test_harness.o: tests/unit/test_harness.c
 	@mkdir -p $$(@D)
@@ -75,6 +81,9 @@ $$($(1)_DIR)/unit_tests: $$($(1)_SRC_O) $$($(1)_TEST_O)
 	$(2) $(5) -o $$@ $$^ -lm
 
 $$($(1)_DIR)/unit_tests_mustfail: $$($(1)_SRC_O) $$($(1)_FAIL_O)
+	$(2) $(5) -o $$@ $$^ -lm
+
+$$($(1)_DIR)/uuvsim: $$($(1)_SRC_O) $$($(1)_UUVSIM_O)
 	$(2) $(5) -o $$@ $$^ -lm
 
 -include $$(wildcard $$($(1)_DIR)/obj/*/*.d $$($(1)_DIR)/obj/*/*/*.d $$($(1)_DIR)/obj/*/*/*/*.d)
@@ -156,15 +165,20 @@ $(BUILD)/tools/test_math_libm: tests/host/test_math_libm.c $(wildcard src/math/*
 	@mkdir -p $(@D)
 	$(CC) $(TOOL_CFLAGS) -fno-builtin -o $@ $^ -lm
 
-HOST_TOOLS := $(BUILD)/tools/check_tables $(BUILD)/tools/test_math_libm
+$(BUILD)/tools/csvdiff: tools/csvdiff.c
+	@mkdir -p $(@D)
+	$(CC) $(TOOL_CFLAGS) -D_POSIX_C_SOURCE=200809L -o $@ $^ -lm
+
+HOST_TOOLS := $(BUILD)/tools/check_tables $(BUILD)/tools/gen_wavetables \
+              $(BUILD)/tools/test_math_libm $(BUILD)/tools/csvdiff
 
 # ---- Top-level targets ----------------------------------------------------
 
 .PHONY: all firmware host-all tools test test-run check-tables run clean deps
 
-all: $(BUILD)/linux-fixed/unit_tests $(BUILD)/linux-float/unit_tests
+all: $(foreach v,linux-fixed linux-float,$(BUILD)/$(v)/unit_tests $(BUILD)/$(v)/uuvsim)
 
-host-all: $(foreach v,$(HOST_VARIANTS),$(BUILD)/$(v)/unit_tests) \
+host-all: $(foreach v,$(HOST_VARIANTS),$(BUILD)/$(v)/unit_tests $(BUILD)/$(v)/uuvsim) \
           $(BUILD)/linux-fixed/unit_tests_mustfail
 
 firmware: $(FW_IMAGES) $(BUILD)/cortexm-mps2-an385-fixed/unit_tests_mustfail.elf

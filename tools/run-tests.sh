@@ -62,6 +62,8 @@ done
 run "host linux-fixed must-fail" fail "$BUILD/linux-fixed/unit_tests_mustfail"
 run "host math vs libm" pass "$BUILD/tools/test_math_libm"
 run "host check_tables (exhaustive)" pass "$BUILD/tools/check_tables"
+run "host wavetable_data.c = generator" pass "$BUILD/tools/gen_wavetables" --check \
+    src/fixedpoint/wavetable_data.c
 
 echo "== qemu =="
 for v in $FW_VARIANTS; do
