@@ -263,7 +263,11 @@ size_t fmt_vformat(char *buf, size_t cap, const char *format, va_list args) {
         for (; *f >= '0' && *f <= '9'; f++) {
             spec.width = spec.width * 10u + (size_t)(*f - '0');
         }
-        if (*f == '.') {
+        if (*f == '.' && f[1] == '*') {
+            int prec = va_arg(args, int);
+            spec.precision = (prec < 0) ? -1 : prec;
+            f += 2;
+        } else if (*f == '.') {
             spec.precision = 0;
             for (f++; *f >= '0' && *f <= '9'; f++) {
                 spec.precision = spec.precision * 10 + (*f - '0');

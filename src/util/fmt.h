@@ -4,7 +4,7 @@
  * bytes on every port.
  *
  * Conversions: %d %i %u %x %X %c %s %% with the length modifiers l and ll,
- * an optional '-' or '0' flag, a field width and, for %s, a precision; and
+ * an optional '-' or '0' flag, a field width and, for %s, a precision (also as .*); and
  * %e %f %g for double with an optional precision (default 6, at most 17).
  * Double conversion scales by powers of ten in double arithmetic, so the
  * last of 17 digits may differ from a correctly rounded libc printf; it is

@@ -32,7 +32,7 @@ void suite_harness(void) {
     FMT_IS("-9223372036854775807 18446744073709551615", "%lld %llu", -9223372036854775807LL,
            18446744073709551615ULL);
     FMT_IS("[  12][12  ][0012][-012]", "[%4d][%-4d][%04d][%04d]", 12, 12, 12, -12);
-    FMT_IS("ab|x|%", "%.2s|%c|%%", "abc", 'x');
+    FMT_IS("ab|x|%|abc", "%.2s|%c|%%|%.*s", "abc", 'x', 3, "abcdef");
 
     UT_TEST("formatter: doubles as C99 printf for exactly representable values");
     FMT_IS("1.5 -0.25 100 1e+20 0.001", "%g %g %g %g %g", 1.5, -0.25, 100.0, 1e20, 0.001);

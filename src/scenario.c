@@ -1,0 +1,305 @@
+/*
+ * The scenario parser (see scenario.h). Line-based: each line is split into
+ * at most a few dozen tokens; every error names the line, the field and what
+ * was expected.
+ */
+#include "scenario.h"
+
+#include <stdarg.h>
+
+#include "util/fmt.h"
+#include "util/parse.h"
+
+#define DEG_TO_RAD (3.14159265358979323846 / 180.0)
+#define MAX_TOKENS 32u
+#define MAX_TIME_S 1.0e6
+
+const char *const scenario_command_names[SCN_COMMAND_COUNT] = {
+    "rudder", "stern", "bow_port", "bow_stbd", "n_rpm", "buoyancy",
+};
+
+/* What a value may be: its unit, whether "deg" may follow, and its range. */
+typedef struct {
+    const char *unit;
+    bool angle; /* [rad], and a "deg" suffix converts */
+    double min;
+    double max;
+} value_rule;
+
+static const value_rule command_rules[SCN_COMMAND_COUNT] = {
+    {"rad", true, -45.0 * DEG_TO_RAD, 45.0 * DEG_TO_RAD},
+    {"rad", true, -45.0 * DEG_TO_RAD, 45.0 * DEG_TO_RAD},
+    {"rad", true, -45.0 * DEG_TO_RAD, 45.0 * DEG_TO_RAD},
+    {"rad", true, -45.0 * DEG_TO_RAD, 45.0 * DEG_TO_RAD},
+    {"rpm", false, -1500.0, 1500.0},
+    {"N", false, -5340.0, 5340.0},
+};
+
+/* Ranges of the initial states, in the order of vessel_state_names. */
+static const value_rule state_rules[VESSEL_NSTATES] = {
+    {"m/s", false, -20.0, 20.0},     {"m/s", false, -20.0, 20.0},
+    {"m/s", false, -20.0, 20.0},     {"rad/s", false, -10.0, 10.0},
+    {"rad/s", false, -10.0, 10.0},   {"rad/s", false, -10.0, 10.0},
+    {"m", false, -1e7, 1e7},         {"m", false, -1e7, 1e7},
+    {"m", false, -1e4, 1e4},         {"rad", true, -3.1415926535897931, 3.1415926535897931},
+    {"rad", true, -80.0 * DEG_TO_RAD, 80.0 * DEG_TO_RAD},
+    {"rad", true, -1e3, 1e3},
+    {"rad", true, -45.0 * DEG_TO_RAD, 45.0 * DEG_TO_RAD},
+    {"rad", true, -45.0 * DEG_TO_RAD, 45.0 * DEG_TO_RAD},
+    {"rad", true, -45.0 * DEG_TO_RAD, 45.0 * DEG_TO_RAD},
+    {"rad", true, -45.0 * DEG_TO_RAD, 45.0 * DEG_TO_RAD},
+    {"rpm", false, -1500.0, 1500.0},
+};
+
+static const value_rule time_rule = {"s", false, 0.0, MAX_TIME_S};
+static const value_rule angle_rule = {"rad", true, 1e-6, 45.0 * DEG_TO_RAD};
+
+typedef struct {
+    scenario *s;
+    scenario_error *err;
+    unsigned line;
+} parser;
+
+static bool fail(parser *p, const parse_token *field, const char *format, ...)
+    __attribute__((format(printf, 3, 4)));
+
+static bool fail(parser *p, const parse_token *field, const char *format, ...) {
+    p->err->line = p->line;
+    if (field != NULL) {
+        size_t n = field->len < sizeof p->err->field - 1u ? field->len
+                                                          : sizeof p->err->field - 1u;
+        for (size_t i = 0; i < n; i++) {
+            p->err->field[i] = field->text[i];
+        }
+        p->err->field[n] = '\0';
+    } else {
+        p->err->field[0] = '\0';
+    }
+    va_list args;
+    va_start(args, format);
+    (void)fmt_vformat(p->err->message, sizeof p->err->message, format, args);
+    va_end(args);
+    return false;
+}
+
+/* Reads a value by its rule; `field` names it in messages. */
+static bool read_value(parser *p, const parse_token *field, const char *text, size_t n,
+                       const value_rule *rule, double *out) {
+    double v = 0.0;
+    size_t used = 0;
+    if (!parse_number(text, n, &v, &used)) {
+        return fail(p, field, "expected a number in %s%s, got '%.*s'", rule->unit,
+                    rule->angle ? " (or with the suffix deg)" : "", (int)n, text);
+    }
+    if (used != n) {
+        if (rule->angle && parse_word_is(text + used, n - used, "deg")) {
+            v *= DEG_TO_RAD;
+        } else {
+            return fail(p, field, "expected a number in %s%s, got '%.*s'", rule->unit,
+                        rule->angle ? " (or with the suffix deg)" : "", (int)n, text);
+        }
+    }
+    if (!(v >= rule->min && v <= rule->max)) {
+        return fail(p, field, "value %g %s out of range [%g, %g]", v, rule->unit, rule->min,
+                    rule->max);
+    }
+    *out = v;
+    return true;
+}
+
+/* Splits "name=value"; false when there is no '=' or either side is empty. */
+static bool split_pair(const parse_token *t, parse_token *name, parse_token *value) {
+    for (size_t i = 0; i < t->len; i++) {
+        if (t->text[i] == '=') {
+            name->text = t->text;
+            name->len = i;
+            value->text = t->text + i + 1u;
+            value->len = t->len - i - 1u;
+            return name->len > 0u && value->len > 0u;
+        }
+    }
+    return false;
+}
+
+static int find_name(const parse_token *name, const char *const *names, int count) {
+    for (int i = 0; i < count; i++) {
+        if (parse_word_is(name->text, name->len, names[i])) {
+            return i;
+        }
+    }
+    return -1;
+}
+
+static bool parse_duration(parser *p, const parse_token *tok, size_t n) {
+    if (n != 2u) {
+        return fail(p, &tok[0], "expected 'duration <seconds>'");
+    }
+    static const value_rule rule = {"s", false, 1e-3, MAX_TIME_S};
+    return read_value(p, &tok[0], tok[1].text, tok[1].len, &rule, &p->s->duration_s);
+}
+
+static bool parse_init(parser *p, const parse_token *tok, size_t n) {
+    if (n < 2u) {
+        return fail(p, &tok[0], "expected 'init <state>=<value> ...'");
+    }
+    for (size_t i = 1; i < n; i++) {
+        parse_token name;
+        parse_token value;
+        if (!split_pair(&tok[i], &name, &value)) {
+            return fail(p, &tok[i], "expected <state>=<value>, got '%.*s'", (int)tok[i].len,
+                        tok[i].text);
+        }
+        int k = find_name(&name, vessel_state_names, VESSEL_NSTATES);
+        if (k < 0) {
+            return fail(p, &name, "unknown state (expected one of u_mps ... n_rpm, as in the "
+                                  "reference CSV layout)");
+        }
+        if (!read_value(p, &name, value.text, value.len, &state_rules[k], &p->s->init[k])) {
+            return false;
+        }
+    }
+    return true;
+}
+
+static bool add_event(parser *p, const parse_token *field, double t, int command, double v) {
+    scenario *s = p->s;
+    if (s->n_events >= SCENARIO_MAX_EVENTS) {
+        return fail(p, field, "too many commands (at most %u per scenario)",
+                    (unsigned)SCENARIO_MAX_EVENTS);
+    }
+    /* Insert after every event at or before t: a stable sort by time. */
+    size_t k = s->n_events;
+    while (k > 0u && s->events[k - 1u].t_s > t) {
+        s->events[k] = s->events[k - 1u];
+        k--;
+    }
+    s->events[k].t_s = t;
+    s->events[k].value = v;
+    s->events[k].command = (uint16_t)command;
+    s->events[k].line = (uint16_t)(p->line > 65535u ? 65535u : p->line);
+    s->n_events++;
+    return true;
+}
+
+static bool parse_at(parser *p, const parse_token *tok, size_t n) {
+    if (n < 3u) {
+        return fail(p, &tok[0], "expected 'at <time> <command>=<value> ...'");
+    }
+    double t = 0.0;
+    if (!read_value(p, &tok[0], tok[1].text, tok[1].len, &time_rule, &t)) {
+        return false;
+    }
+    for (size_t i = 2; i < n; i++) {
+        parse_token name;
+        parse_token value;
+        if (!split_pair(&tok[i], &name, &value)) {
+            return fail(p, &tok[i], "expected <command>=<value>, got '%.*s'", (int)tok[i].len,
+                        tok[i].text);
+        }
+        int c = find_name(&name, scenario_command_names, SCN_COMMAND_COUNT);
+        if (c < 0) {
+            return fail(p, &name, "unknown command (expected rudder, stern, bow_port, "
+                                  "bow_stbd, n_rpm or buoyancy)");
+        }
+        double v = 0.0;
+        if (!read_value(p, &name, value.text, value.len, &command_rules[c], &v) ||
+            !add_event(p, &name, t, c, v)) {
+            return false;
+        }
+    }
+    return true;
+}
+
+static bool parse_zigzag(parser *p, const parse_token *tok, size_t n) {
+    static const char *const keys[] = {"rudder", "heading", "start", "stop"};
+    scenario_zigzag z = {true, 0.0, 0.0, 0.0, -1.0};
+    bool seen[4] = {false, false, false, false};
+    for (size_t i = 1; i < n; i++) {
+        parse_token name;
+        parse_token value;
+        if (!split_pair(&tok[i], &name, &value)) {
+            return fail(p, &tok[i], "expected <key>=<value>, got '%.*s'", (int)tok[i].len,
+                        tok[i].text);
+        }
+        int k = find_name(&name, keys, 4);
+        if (k < 0) {
+            return fail(p, &name, "unknown zigzag key (expected rudder, heading, start, stop)");
+        }
+        double *dest[4] = {&z.rudder_rad, &z.heading_rad, &z.start_s, &z.stop_s};
+        if (!read_value(p, &name, value.text, value.len, (k < 2) ? &angle_rule : &time_rule,
+                        dest[k])) {
+            return false;
+        }
+        seen[k] = true;
+    }
+    if (!seen[0] || !seen[1]) {
+        return fail(p, &tok[0], "expected 'zigzag rudder=<amplitude> heading=<threshold>'");
+    }
+    if (seen[3] && z.stop_s <= z.start_s) {
+        return fail(p, &tok[0], "stop (%g s) must come after start (%g s)", z.stop_s,
+                    z.start_s);
+    }
+    if (p->s->zigzag.enabled) {
+        return fail(p, &tok[0], "only one zigzag per scenario");
+    }
+    p->s->zigzag = z;
+    return true;
+}
+
+static bool parse_line(parser *p, const char *line, size_t n) {
+    /* Everything from '#' on is a comment. */
+    for (size_t i = 0; i < n; i++) {
+        if (line[i] == '#') {
+            n = i;
+            break;
+        }
+    }
+    parse_token tok[MAX_TOKENS];
+    size_t count = parse_tokens(line, n, tok, MAX_TOKENS);
+    if (count == 0u) {
+        return true;
+    }
+    if (count > MAX_TOKENS) {
+        return fail(p, NULL, "too many fields on one line (at most %u)", (unsigned)MAX_TOKENS);
+    }
+    if (parse_word_is(tok[0].text, tok[0].len, "duration")) {
+        return parse_duration(p, tok, count);
+    }
+    if (parse_word_is(tok[0].text, tok[0].len, "init")) {
+        return parse_init(p, tok, count);
+    }
+    if (parse_word_is(tok[0].text, tok[0].len, "at")) {
+        return parse_at(p, tok, count);
+    }
+    if (parse_word_is(tok[0].text, tok[0].len, "zigzag")) {
+        return parse_zigzag(p, tok, count);
+    }
+    return fail(p, &tok[0], "unknown keyword (expected duration, init, at or zigzag)");
+}
+
+bool scenario_parse(scenario *s, const char *text, size_t n, scenario_error *err) {
+    *s = (scenario){0};
+    s->zigzag.stop_s = -1.0;
+    *err = (scenario_error){0};
+    parser p = {s, err, 0u};
+    size_t start = 0;
+    while (start < n) {
+        size_t end = start;
+        while (end < n && text[end] != '\n') {
+            end++;
+        }
+        p.line++;
+        for (size_t i = start; i < end; i++) {
+            char c = text[i];
+            if (c == '\0' || ((unsigned char)c < 0x20u && c != '\t' && c != '\r')) {
+                return fail(&p, NULL, "unexpected control character (byte 0x%02x)",
+                            (unsigned)(unsigned char)c);
+            }
+        }
+        if (!parse_line(&p, text + start, end - start)) {
+            return false;
+        }
+        start = end + 1u;
+    }
+    return true;
+}

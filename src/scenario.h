@@ -1,0 +1,75 @@
+/*
+ * Scenario files: what a run does, as timed commands. The parser reads text
+ * (a file on the host, a built-in or semihosted file on a target) into a
+ * fixed-size structure; no heap.
+ *
+ *   # comment                      anywhere on a line
+ *   duration <s>
+ *   init <state>=<value> ...       any of the 17 vessel states; unnamed ones start at 0
+ *   at <t> <command>=<value> ...   rudder stern bow_port bow_stbd [rad, or NNdeg],
+ *                                  n_rpm [rpm], buoyancy [N, the adjustment dB]
+ *   zigzag rudder=<amp> heading=<threshold> [start=<s>] [stop=<s>]
+ *
+ * A command holds until changed. Events apply at the first slow-frame
+ * boundary at or after their time, in file order for equal times.
+ */
+#ifndef UUV_SCENARIO_H
+#define UUV_SCENARIO_H
+
+#include <stdbool.h>
+#include <stddef.h>
+#include <stdint.h>
+
+#include "models/vessel.h"
+
+#define SCENARIO_MAX_EVENTS 256u
+
+typedef enum {
+    SCN_RUDDER = 0,  /* [rad] */
+    SCN_STERN,       /* [rad] */
+    SCN_BOW_PORT,    /* [rad] */
+    SCN_BOW_STBD,    /* [rad] */
+    SCN_N_RPM,       /* [rpm] shaft speed command */
+    SCN_BUOYANCY,    /* [N] buoyancy adjustment dB = B - W */
+    SCN_COMMAND_COUNT
+} scenario_command;
+
+typedef struct {
+    double t_s;       /* [s] time the command takes effect */
+    double value;     /* in the command's unit (angles already in rad) */
+    uint16_t command; /* scenario_command */
+    uint16_t line;    /* source line, for messages */
+} scenario_event;
+
+typedef struct {
+    bool enabled;
+    double rudder_rad;    /* [rad] amplitude, > 0 */
+    double heading_rad;   /* [rad] switching threshold, > 0 */
+    double start_s;       /* [s] */
+    double stop_s;        /* [s] (a negative value: until the end) */
+} scenario_zigzag;
+
+typedef struct {
+    double duration_s;                    /* [s]; 0 when the file gave none */
+    double init[VESSEL_NSTATES];          /* initial vessel state */
+    scenario_event events[SCENARIO_MAX_EVENTS];
+    size_t n_events;
+    scenario_zigzag zigzag;
+} scenario;
+
+typedef struct {
+    unsigned line;       /* 1-based line of the error (0: not line-bound) */
+    char field[24];      /* the field or keyword at fault */
+    char message[120];   /* what was expected, and what was found */
+} scenario_error;
+
+/* Name and unit of each command, as the file and reports write them. */
+extern const char *const scenario_command_names[SCN_COMMAND_COUNT];
+
+/*
+ * Parses n bytes of scenario text. Returns true on success; otherwise
+ * fills *err and returns false (the scenario is then unusable).
+ */
+bool scenario_parse(scenario *s, const char *text, size_t n, scenario_error *err);
+
+#endif /* UUV_SCENARIO_H */

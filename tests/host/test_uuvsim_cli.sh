@@ -1,0 +1,80 @@
+#!/bin/sh
+# End-to-end checks of the uuvsim program against the reference vectors and
+# its error handling. Usage: test_uuvsim_cli.sh UUVSIM CSVDIFF
+# Prints one line per check and "N passed, N failed".
+set -u
+uuvsim=$1
+csvdiff=$2
+tmp=$(mktemp -d)
+trap 'rm -rf "$tmp"' EXIT
+pass=0
+fail=0
+check() { # name, then a command that must succeed
+    name=$1; shift
+    if "$@" >"$tmp/out" 2>&1; then
+        pass=$((pass + 1)); echo "  ok    $name"
+    else
+        fail=$((fail + 1)); echo "  FAIL  $name"; sed 's/^/        /' "$tmp/out" | tail -n 15
+    fi
+}
+# expect_error NAME PATTERN ARGS...: exit status 2, message matching PATTERN on stderr,
+# nothing on stdout, and no output file left behind.
+expect_error() {
+    name=$1; pattern=$2; shift 2
+    "$@" >"$tmp/stdout" 2>"$tmp/stderr"
+    status=$?
+    if [ $status -eq 2 ] && grep -qE "$pattern" "$tmp/stderr" && [ ! -s "$tmp/stdout" ] &&
+       [ -z "$(ls "$tmp" | grep -E 'bad\.csv')" ]; then
+        pass=$((pass + 1)); echo "  ok    $name"
+    else
+        fail=$((fail + 1)); echo "  FAIL  $name (exit $status)"; sed 's/^/        /' "$tmp/stderr"
+    fi
+}
+
+V=tests/vectors
+derivs_match() {
+    "$uuvsim" derivs "$1" >"$tmp/d.csv" && "$csvdiff" --rel 1e-9 --abs 1e-12 "$1" "$tmp/d.csv"
+}
+check "derivs: 10 random rows within 1e-9 relative (floor 1e-12)" derivs_match $V/npsauv_derivatives.csv
+check "derivs: 8 edge rows within 1e-9 relative (floor 1e-12)" derivs_match $V/npsauv_derivatives_edge.csv
+
+straight() {
+    "$uuvsim" --quiet --plant vessel --propulsion mss --scenario scenarios/straight_1300rpm.scn \
+        --csv "$tmp/s.csv" &&
+        "$csvdiff" --rel 1e-6 --abs 1e-12 $V/npsauv_straight_1300rpm.csv "$tmp/s.csv"
+}
+check "vessel run: straight 1300 rpm, every state at every row within 1e-6" straight
+
+twice() {
+    "$uuvsim" --quiet --scenario scenarios/zigzag_20_20.scn --csv "$tmp/a.csv" &&
+        "$uuvsim" --quiet --scenario scenarios/zigzag_20_20.scn --csv "$tmp/b.csv" &&
+        cmp "$tmp/a.csv" "$tmp/b.csv"
+}
+check "vessel run: the same scenario twice gives byte-identical CSV" twice
+
+summary_json() {
+    "$uuvsim" --json --scenario scenarios/turning_circle.scn >"$tmp/t.json" &&
+        grep -q '"tactical_diameter_m"' "$tmp/t.json" && grep -q '"build"' "$tmp/t.json"
+}
+check "summary: --json carries the build and the turning-circle metrics" summary_json
+
+printf 'duration 10\nat 1 rudder=abc\n' >"$tmp/bad1.scn"
+expect_error "error: malformed value names file, line and field" \
+    "bad1.scn:2: field 'rudder'" "$uuvsim" --scenario "$tmp/bad1.scn" --csv "$tmp/bad.csv"
+printf 'duration 10\nat 1 n_rpm=2000\n' >"$tmp/bad2.scn"
+expect_error "error: out-of-range value" "bad2.scn:2: field 'n_rpm'.*out of range" \
+    "$uuvsim" --scenario "$tmp/bad2.scn"
+expect_error "error: unknown option" "unknown option '--speed'" \
+    "$uuvsim" --speed 3 --scenario scenarios/turning_circle.scn
+expect_error "error: missing scenario file" "nosuch.scn: cannot open" \
+    "$uuvsim" --scenario "$tmp/nosuch.scn"
+expect_error "error: unwritable CSV" "cannot write" \
+    "$uuvsim" --scenario scenarios/turning_circle.scn --csv "$tmp/no/such/dir/bad.csv"
+printf 'case,delta_r_cmd_rad\n1,2\n' >"$tmp/badd.csv"
+expect_error "error: derivs file with a wrong header" "badd.csv:1: column 3" \
+    "$uuvsim" derivs "$tmp/badd.csv"
+expect_error "error: bad --plant value" "expected vessel or full" \
+    "$uuvsim" --plant boat --scenario scenarios/turning_circle.scn
+
+echo "$pass passed, $fail failed"
+[ $fail -eq 0 ]

@@ -1,0 +1,126 @@
+/*
+ * The scenario parser: the grammar of scenario.h, and an error that names
+ * the line and field for each kind of bad input.
+ */
+#include "scenario.h"
+#include "ut.h"
+
+void suite_scenario(void);
+
+static scenario scn;
+static scenario_error err;
+
+static size_t text_len(const char *s) {
+    size_t n = 0;
+    while (s[n] != '\0') {
+        n++;
+    }
+    return n;
+}
+
+static bool parse(const char *text) { return scenario_parse(&scn, text, text_len(text), &err); }
+
+static bool field_is(const char *name) {
+    size_t i = 0;
+    for (; name[i] != '\0' && err.field[i] == name[i]; i++) {
+    }
+    return name[i] == '\0' && err.field[i] == '\0';
+}
+
+/* Expects parse failure at a line, naming a field. */
+static void expect_error(const char *text, unsigned line, const char *field) {
+    bool ok = parse(text);
+    UT_CHECK(!ok);
+    UT_EQ_INT(err.line, line);
+    if (!UT_CHECK(field_is(field))) {
+        ut_info("field '%s', expected '%s' (%s)", err.field, field, err.message);
+    }
+    UT_CHECK(err.message[0] != '\0');
+}
+
+void suite_scenario(void) {
+    UT_TEST("scenario: every keyword, units and comments are read");
+    const char *good = "# a comment line\n"
+                       "duration 120.5   # trailing comment\n"
+                       "init u_mps=1e-6 n_rpm=1300 psi_rad=90deg\n"
+                       "\n"
+                       "at 0 n_rpm=1300\n"
+                       "at 10 rudder=20deg stern=-0.1 buoyancy=250\r\n"
+                       "at 5 bow_port=0.05 bow_stbd=-5deg\n"
+                       "zigzag rudder=20deg heading=10deg start=60 stop=200\n";
+    UT_CHECK(parse(good));
+    UT_NEAR(scn.duration_s, 120.5, 0.0);
+    UT_NEAR(scn.init[VESSEL_U_MPS], 1e-6, 0.0);
+    UT_NEAR(scn.init[VESSEL_N_RPM], 1300.0, 0.0);
+    UT_NEAR(scn.init[VESSEL_PSI_RAD], 1.5707963267948966, 1e-15);
+    UT_NEAR(scn.init[VESSEL_V_MPS], 0.0, 0.0);
+    UT_EQ_INT(scn.n_events, 6);
+    UT_CHECK(scn.zigzag.enabled);
+    UT_NEAR(scn.zigzag.rudder_rad, 0.3490658503988659, 1e-15);
+    UT_NEAR(scn.zigzag.stop_s, 200.0, 0.0);
+
+    UT_TEST("scenario: events are sorted by time, stable for equal times");
+    UT_NEAR(scn.events[0].t_s, 0.0, 0.0);
+    UT_NEAR(scn.events[1].t_s, 5.0, 0.0);
+    UT_EQ_INT(scn.events[1].command, SCN_BOW_PORT);
+    UT_EQ_INT(scn.events[2].command, SCN_BOW_STBD);
+    UT_EQ_INT(scn.events[3].command, SCN_RUDDER);
+    UT_EQ_INT(scn.events[4].command, SCN_STERN);
+    UT_EQ_INT(scn.events[5].command, SCN_BUOYANCY);
+    UT_EQ_INT(scn.events[5].line, 6);
+    UT_NEAR(scn.events[5].value, 250.0, 0.0);
+
+    UT_TEST("scenario: an empty file parses, with no duration");
+    UT_CHECK(parse(""));
+    UT_NEAR(scn.duration_s, 0.0, 0.0);
+    UT_CHECK(!scn.zigzag.enabled);
+
+    UT_TEST("scenario errors: unknown keyword, state, command");
+    expect_error("duration 10\nspeed 3\n", 2, "speed");
+    expect_error("init q_dot=1\n", 1, "q_dot");
+    expect_error("at 1 throttle=3\n", 1, "throttle");
+
+    UT_TEST("scenario errors: malformed numbers and units");
+    expect_error("duration ten\n", 1, "duration");
+    expect_error("at 1 rudder=5degs\n", 1, "rudder");
+    expect_error("at 1 n_rpm=100deg\n", 1, "n_rpm");
+    expect_error("at x n_rpm=100\n", 1, "at");
+    expect_error("at 1 n_rpm=\n", 1, "n_rpm=");
+    expect_error("at 1 n_rpm=1e\n", 1, "n_rpm");
+
+    UT_TEST("scenario errors: values out of range");
+    expect_error("at 1 n_rpm=1600\n", 1, "n_rpm");
+    expect_error("at 1 rudder=50deg\n", 1, "rudder");
+    expect_error("at -1 rudder=0\n", 1, "at");
+    expect_error("duration 0\n", 1, "duration");
+    expect_error("init theta_rad=85deg\n", 1, "theta_rad");
+    expect_error("at 1 buoyancy=1e400\n", 1, "buoyancy");
+
+    UT_TEST("scenario errors: incomplete lines and zig-zag rules");
+    expect_error("duration\n", 1, "duration");
+    expect_error("duration 1 2\n", 1, "duration");
+    expect_error("init\n", 1, "init");
+    expect_error("at 3\n", 1, "at");
+    expect_error("zigzag rudder=10deg\n", 1, "zigzag");
+    expect_error("zigzag rudder=10deg heading=5deg start=50 stop=40\n", 1, "zigzag");
+    expect_error("zigzag rudder=1deg heading=1deg\nzigzag rudder=1deg heading=1deg\n", 2, "zigzag");
+    expect_error("zigzag rudder=1deg heading=1deg gain=2\n", 1, "gain");
+
+    UT_TEST("scenario errors: control bytes and too many fields or events");
+    expect_error("duration 1\n\x01\n", 2, "");
+    expect_error("at 1 n_rpm=1 n_rpm=1 n_rpm=1 n_rpm=1 n_rpm=1 n_rpm=1 n_rpm=1 n_rpm=1 n_rpm=1 "
+                 "n_rpm=1 n_rpm=1 n_rpm=1 n_rpm=1 n_rpm=1 n_rpm=1 n_rpm=1 n_rpm=1 n_rpm=1 "
+                 "n_rpm=1 n_rpm=1 n_rpm=1 n_rpm=1 n_rpm=1 n_rpm=1 n_rpm=1 n_rpm=1 n_rpm=1 "
+                 "n_rpm=1 n_rpm=1 n_rpm=1 n_rpm=1\n",
+                 1, "");
+    static char many[SCENARIO_MAX_EVENTS * 16u + 64u];
+    size_t n = 0;
+    for (unsigned i = 0; i <= SCENARIO_MAX_EVENTS; i++) {
+        const char *line = "at 1 n_rpm=10\n";
+        for (size_t k = 0; line[k] != '\0'; k++) {
+            many[n++] = line[k];
+        }
+    }
+    many[n] = '\0';
+    expect_error(many, SCENARIO_MAX_EVENTS + 1u, "n_rpm");
+}
