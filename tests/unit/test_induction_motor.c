@@ -1,0 +1,586 @@
+/*
+ * The induction motor (src/models/induction_motor.h), both twins in every
+ * build, against independent references:
+ *   - the exact steady-state per-phase equivalent circuit (Rs, Xls, Xm, Xlr,
+ *     Rr/s), computed here in double complex arithmetic, at locked speed;
+ *   - synchronous speed, for a free acceleration without load;
+ *   - the energy balance: electrical input = copper losses + magnetic
+ *     energy change + kinetic energy change + work done on the load;
+ *   - the other twin: fixed against float on the same stimulus.
+ * The stimulus is built in double (src/math only) and handed to the float
+ * twin as float and to the fixed twin as Q31 of 1024 V. Run lengths keep
+ * the suite near 1e9 instructions on a Cortex-M3 (software float there).
+ */
+#include <stdbool.h>
+#include <stddef.h>
+#include <stdint.h>
+
+#include "fixedpoint/fixedpoint.h"
+#include "math/umath.h"
+#include "models/drive_units.h"
+#include "models/induction_motor.h"
+#include "models/propeller.h"
+#include "ut.h"
+
+void suite_induction_motor(void);
+
+#define STEP_S 100e-6
+#define HALF_SQRT3 0.86602540378443864676
+
+/* ---- Complex arithmetic in double ----------------------------------------- */
+
+typedef struct {
+    double re, im;
+} cplx;
+
+static cplx c_make(double re, double im) {
+    cplx z = {re, im};
+    return z;
+}
+static cplx c_add(cplx a, cplx b) { return c_make(a.re + b.re, a.im + b.im); }
+static cplx c_mul(cplx a, cplx b) {
+    return c_make(a.re * b.re - a.im * b.im, a.re * b.im + a.im * b.re);
+}
+static cplx c_div(cplx a, cplx b) {
+    const double d = b.re * b.re + b.im * b.im;
+    return c_make((a.re * b.re + a.im * b.im) / d, (a.im * b.re - a.re * b.im) / d);
+}
+static double c_abs2(cplx a) { return a.re * a.re + a.im * a.im; }
+
+/* ---- The reference: exact steady-state equivalent circuit ----------------- */
+
+typedef struct {
+    double te_nm;  /* [N m] */
+    double is_rms; /* [A] stator (line) current */
+} eq_point;
+
+/*
+ * Per-phase circuit at stator frequency f [Hz], phase voltage v_rms [V],
+ * shaft speed w [rad/s]: Is = V / (Zs + Zm || Zr), Ir = Is Zm / (Zm + Zr),
+ * Te = 3 |Ir|^2 (Rr / s) / (ws / p), s = (ws - p w) / ws (s != 0).
+ */
+static eq_point eq_circuit(const induction_motor_params *p, double v_rms, double f, double w) {
+    const double ws = MATH_TWO_PI_F64 * f;
+    const double pp = (double)p->pole_pairs;
+    const double s = (ws - pp * w) / ws;
+    const cplx zs = c_make(p->rs_ohm, ws * p->lls_h);
+    const cplx zm = c_make(0.0, ws * p->lm_h);
+    const cplx zr = c_make(p->rr_ohm / s, ws * p->llr_h);
+    const cplx zmr = c_add(zm, zr);
+    const cplx is = c_div(c_make(v_rms, 0.0), c_add(zs, c_div(c_mul(zm, zr), zmr)));
+    const cplx ir = c_div(c_mul(is, zm), zmr);
+    eq_point e;
+    e.te_nm = 3.0 * c_abs2(ir) * (p->rr_ohm / s) / (ws / pp);
+    e.is_rms = math_sqrt_f64(c_abs2(is));
+    return e;
+}
+
+/* ---- Balanced three-phase stimulus ----------------------------------------- */
+
+/*
+ * Phase voltages with the space vector amp e^(j theta): the mean over each
+ * step [t_n, t_n + h] of a steady sinusoid is amp e^(j theta_n) g with
+ * g = (e^(j w h) - 1) / (j w h); theta advances by a recurrence (one
+ * complex product per step, drift below 1e-12 over a run).
+ */
+typedef struct {
+    cplx phasor; /* e^(j theta_n) */
+    cplx rot;    /* e^(j w h) */
+    cplx g;      /* step-mean factor */
+} sine3;
+
+static void sine3_init(sine3 *s, double f_hz) {
+    const double wh = MATH_TWO_PI_F64 * f_hz * STEP_S;
+    double sn, cs;
+    math_sincos_f64(wh, &sn, &cs);
+    s->phasor = c_make(1.0, 0.0);
+    s->rot = c_make(cs, sn);
+    s->g = c_make(sn / wh, (1.0 - cs) / wh);
+}
+
+static void phases_from_vector(cplx v, double out[3]) {
+    out[0] = v.re;
+    out[1] = -0.5 * v.re + HALF_SQRT3 * v.im;
+    out[2] = -out[0] - out[1];
+}
+
+/* The step-mean phase voltages [V] for a space-vector amplitude amp [V]. */
+static void sine3_next(sine3 *s, double amp, double out[3]) {
+    const cplx v = c_mul(c_make(amp, 0.0), c_mul(s->phasor, s->g));
+    phases_from_vector(v, out);
+    s->phasor = c_mul(s->phasor, s->rot);
+}
+
+/* ---- Both twins behind one interface, in SI units ------------------------- */
+
+typedef enum { TWIN_FIXED = 0, TWIN_FLOAT = 1 } twin_kind;
+
+static const char *const twin_name[2] = {"fixed", "float"};
+
+typedef struct {
+    twin_kind kind;
+    induction_motor_q q;
+    induction_motor_f32 f;
+} motor;
+
+typedef struct {
+    double i[3];   /* [A] */
+    double te, tl; /* [N m] */
+    double w;      /* [rad/s] */
+} motor_out;
+
+static motor motor_a, motor_b; /* static: kept off the small target stacks */
+
+static induction_motor_status motor_init(motor *m, twin_kind kind, const induction_motor_params *p,
+                                         const propeller_model *prop) {
+    m->kind = kind;
+    if (kind == TWIN_FIXED) {
+        return induction_motor_init_q(&m->q, p, prop, STEP_S);
+    }
+    return induction_motor_init_f32(&m->f, p, prop, STEP_S);
+}
+
+static double q31_si(q31_t x, double base) { return fp_to_f64_q31(x) * base; }
+
+static void motor_step(motor *m, const double v[3], motor_out *o) {
+    if (m->kind == TWIN_FIXED) {
+        induction_motor_in_q in;
+        induction_motor_out_q out;
+        in.v_a = fp_pu_from_f64_q31(v[0], DRIVE_BASE_VOLTAGE_V);
+        in.v_b = fp_pu_from_f64_q31(v[1], DRIVE_BASE_VOLTAGE_V);
+        in.v_c = fp_pu_from_f64_q31(v[2], DRIVE_BASE_VOLTAGE_V);
+        induction_motor_step_q(&m->q, &in, &out);
+        o->i[0] = q31_si(out.i_a, DRIVE_BASE_CURRENT_A);
+        o->i[1] = q31_si(out.i_b, DRIVE_BASE_CURRENT_A);
+        o->i[2] = q31_si(out.i_c, DRIVE_BASE_CURRENT_A);
+        o->te = q31_si(out.te, DRIVE_BASE_TORQUE_NM);
+        o->tl = q31_si(out.t_load, DRIVE_BASE_TORQUE_NM);
+        o->w = q31_si(out.w, DRIVE_BASE_SPEED_RADPS);
+    } else {
+        induction_motor_in_f32 in = {(float)v[0], (float)v[1], (float)v[2]};
+        induction_motor_out_f32 out;
+        induction_motor_step_f32(&m->f, &in, &out);
+        o->i[0] = (double)out.i_a;
+        o->i[1] = (double)out.i_b;
+        o->i[2] = (double)out.i_c;
+        o->te = (double)out.te_nm;
+        o->tl = (double)out.t_load_nm;
+        o->w = (double)out.w_radps;
+    }
+}
+
+static void motor_set_speed(motor *m, double w, bool locked) {
+    if (m->kind == TWIN_FIXED) {
+        induction_motor_set_speed_q(&m->q, fp_pu_from_f64_q31(w, DRIVE_BASE_SPEED_RADPS), locked);
+    } else {
+        induction_motor_set_speed_f32(&m->f, (float)w, locked);
+    }
+}
+
+static void motor_observe(const motor *m, induction_motor_obs *o) {
+    if (m->kind == TWIN_FIXED) {
+        induction_motor_observe_q(&m->q, o);
+    } else {
+        induction_motor_observe_f32(&m->f, o);
+    }
+}
+
+static const induction_motor_coefs *motor_coefs(const motor *m) {
+    return (m->kind == TWIN_FIXED) ? &m->q.c : &m->f.c;
+}
+
+/* Saturation events of the fixed twin (the float twin has none). */
+static uint32_t motor_sat(const motor *m) { return (m->kind == TWIN_FIXED) ? m->q.sat_count : 0u; }
+
+static double abs_d(double x) { return (x < 0.0) ? -x : x; }
+static double max_d(double a, double b) { return (a > b) ? a : b; }
+
+static propeller_model propeller(void) {
+    propeller_model prop;
+    UT_CHECK(propeller_init(&prop, &propeller_params_default) == PROPELLER_OK);
+    return prop;
+}
+
+/* Peak phase voltage [V] of a parameter set at rated voltage. */
+static double rated_peak_v(const induction_motor_params *p) {
+    return p->v_ll_rated_v * math_sqrt_f64(2.0 / 3.0);
+}
+
+/* ---- Energy accounting (trapezoidal, in double) ---------------------------- */
+
+typedef struct {
+    double e_in, e_cu, w_air, w_load; /* [J] accumulated */
+    double e_mag0, e_kin0;            /* [J] stored at the start */
+    double i[3], is2, ir2, tw, tlw;   /* values at the end of the last step */
+} energy_acc;
+
+static void energy_sample(energy_acc *a, const induction_motor_obs *o) {
+    a->is2 = o->i_s[0] * o->i_s[0] + o->i_s[1] * o->i_s[1];
+    a->ir2 = o->i_r[0] * o->i_r[0] + o->i_r[1] * o->i_r[1];
+    a->tw = o->te_nm * o->w_radps;
+    a->tlw = o->t_load_nm * o->w_radps;
+}
+
+static void energy_start(energy_acc *a, const motor *m) {
+    induction_motor_obs o;
+    motor_observe(m, &o);
+    a->e_in = 0.0;
+    a->e_cu = 0.0;
+    a->w_air = 0.0;
+    a->w_load = 0.0;
+    a->e_mag0 = induction_motor_magnetic_energy_f64(&o);
+    a->e_kin0 = induction_motor_kinetic_energy_f64(motor_coefs(m), &o);
+    phases_from_vector(c_make(o.i_s[0], o.i_s[1]), a->i);
+    energy_sample(a, &o);
+}
+
+/*
+ * One step: input h * sum(vbar_x * (i_x,n + i_x,n+1) / 2); copper
+ * (3/2) h (Rs |i_s|^2 + Rr |i_r|^2), trapezoidal; air-gap and load work
+ * h (T w)_mean.
+ */
+static void energy_add(energy_acc *a, const motor *m, const double v[3], const motor_out *out) {
+    const induction_motor_coefs *c = motor_coefs(m);
+    const double h = STEP_S;
+    const double is2 = a->is2, ir2 = a->ir2, tw = a->tw, tlw = a->tlw;
+    induction_motor_obs o;
+    motor_observe(m, &o);
+    energy_sample(a, &o);
+    for (int k = 0; k < 3; k++) {
+        a->e_in += h * v[k] * 0.5 * (a->i[k] + out->i[k]);
+        a->i[k] = out->i[k];
+    }
+    a->e_cu += h * 1.5 * (c->rs_ohm * 0.5 * (is2 + a->is2) + c->rr_ohm * 0.5 * (ir2 + a->ir2));
+    a->w_air += h * 0.5 * (tw + a->tw);
+    a->w_load += h * 0.5 * (tlw + a->tlw);
+}
+
+/* (input - copper - d(magnetic) - d(kinetic) - load work) / input. */
+static double energy_residual(const energy_acc *a, const motor *m, double *d_mag, double *d_kin) {
+    induction_motor_obs o;
+    motor_observe(m, &o);
+    *d_mag = induction_motor_magnetic_energy_f64(&o) - a->e_mag0;
+    *d_kin = induction_motor_kinetic_energy_f64(motor_coefs(m), &o) - a->e_kin0;
+    return (a->e_in - a->e_cu - *d_mag - *d_kin - a->w_load) / a->e_in;
+}
+
+/* ---- Tests ----------------------------------------------------------------- */
+
+static void test_init(void) {
+    static induction_motor_f64 m64;
+    induction_motor_params bad = induction_motor_params_15kw_delta;
+    propeller_model prop = propeller();
+
+    UT_TEST("init: the published sets are accepted by all three twins; J = J_rotor + I0");
+    UT_EQ_INT(induction_motor_init_q(&motor_a.q, &induction_motor_params_15kw_delta, &prop, STEP_S),
+              INDUCTION_MOTOR_OK);
+    UT_EQ_INT(induction_motor_init_f32(&motor_a.f, &induction_motor_params_4kw_star, NULL, STEP_S),
+              INDUCTION_MOTOR_OK);
+    UT_EQ_INT(induction_motor_init_f64(&m64, &induction_motor_params_15kw_delta, &prop, STEP_S),
+              INDUCTION_MOTOR_OK);
+    UT_NEAR(m64.c.j_total_kgm2, 0.102 + 0.011, 1e-15);
+    UT_NEAR(motor_a.q.c.k_drag, prop.k_drag, 0.0);
+
+    UT_TEST("init: rejects NULL, non-physical parameters, steps outside (0, 1 ms]");
+    UT_EQ_INT(induction_motor_init_q(NULL, &bad, NULL, STEP_S), INDUCTION_MOTOR_ERR_NULL);
+    UT_EQ_INT(induction_motor_init_f32(&motor_a.f, NULL, NULL, STEP_S), INDUCTION_MOTOR_ERR_NULL);
+    bad.rr_ohm = 0.0;
+    UT_EQ_INT(induction_motor_init_f64(&m64, &bad, NULL, STEP_S), INDUCTION_MOTOR_ERR_PARAM);
+    bad = induction_motor_params_15kw_delta;
+    bad.lls_h = -1e-3;
+    UT_EQ_INT(induction_motor_init_f32(&motor_a.f, &bad, NULL, STEP_S), INDUCTION_MOTOR_ERR_PARAM);
+    bad = induction_motor_params_15kw_delta;
+    bad.pole_pairs = 0u;
+    UT_EQ_INT(induction_motor_init_q(&motor_a.q, &bad, NULL, STEP_S), INDUCTION_MOTOR_ERR_PARAM);
+    bad = induction_motor_params_15kw_delta;
+    bad.lm_h = math_nan_f64();
+    UT_EQ_INT(induction_motor_init_q(&motor_a.q, &bad, NULL, STEP_S), INDUCTION_MOTOR_ERR_PARAM);
+    bad = induction_motor_params_15kw_delta;
+    UT_EQ_INT(induction_motor_init_f64(&m64, &bad, NULL, 0.0), INDUCTION_MOTOR_ERR_STEP);
+    UT_EQ_INT(induction_motor_init_f32(&motor_a.f, &bad, NULL, 2e-3), INDUCTION_MOTOR_ERR_STEP);
+
+    UT_TEST("init (fixed): a rotor angle per step above 0.25 rad at 512 rad/s is a range error "
+            "(p h 512 = 1.024 rad at h = 1 ms), which the float twin accepts");
+    UT_EQ_INT(induction_motor_init_q(&motor_a.q, &bad, NULL, 1e-3), INDUCTION_MOTOR_ERR_RANGE);
+    UT_EQ_INT(induction_motor_init_f32(&motor_a.f, &bad, NULL, 1e-3), INDUCTION_MOTOR_OK);
+}
+
+/*
+ * Locked speed at slip s, 50 Hz, voltage v_scale * rated: the amplitude is
+ * raised linearly over the first 40 ms (no switching-on transient beyond the
+ * current base), then held; the torque is averaged over the last period.
+ */
+#define SS_STEPS 3000
+#define SS_RAMP 800
+#define SS_PERIOD 200
+
+static void run_locked(motor *m, double slip, double v_scale, double *te, double *ipk) {
+    const induction_motor_params *p = &induction_motor_params_15kw_delta;
+    const double w = (1.0 - slip) * MATH_TWO_PI_F64 * 50.0 / (double)p->pole_pairs;
+    const double amp = v_scale * rated_peak_v(p);
+    sine3 stim;
+    double v[3];
+    motor_out out;
+    sine3_init(&stim, 50.0);
+    UT_EQ_INT(motor_init(m, m->kind, p, NULL), INDUCTION_MOTOR_OK);
+    motor_set_speed(m, w, true);
+    *te = 0.0;
+    *ipk = 0.0;
+    for (int n = 0; n < SS_STEPS; n++) {
+        const double x = (n < SS_RAMP) ? ((double)n + 0.5) / (double)SS_RAMP : 1.0;
+        sine3_next(&stim, amp * x * x * (3.0 - 2.0 * x), v);
+        motor_step(m, v, &out);
+        if (n >= SS_STEPS - SS_PERIOD) {
+            *te += out.te / (double)SS_PERIOD;
+            *ipk = max_d(*ipk, abs_d(out.i[0]));
+        }
+    }
+}
+
+static void test_steady_state(void) {
+    static const struct {
+        double slip, v_scale;
+    } pts[] = {{-0.04, 1.0}, {-0.01, 1.0}, {0.005, 1.0}, {0.01, 1.0},
+               {0.02, 1.0},  {0.04, 1.0},  {0.2, 0.25},  {1.0, 0.1}};
+    const induction_motor_params *p = &induction_motor_params_15kw_delta;
+    UT_TEST("steady state at locked speed, 50 Hz: torque and stator current within 0.5 % of the "
+            "exact equivalent circuit at 8 slips (-4 % generating .. 100 % standstill), both "
+            "twins, no saturation");
+    for (int t = 0; t < 2; t++) {
+        double worst_te = 0.0, worst_i = 0.0;
+        motor *m = &motor_a;
+        m->kind = (twin_kind)t;
+        for (unsigned k = 0; k < sizeof pts / sizeof pts[0]; k++) {
+            const double w = (1.0 - pts[k].slip) * MATH_PI_F64 * 50.0;
+            const eq_point e =
+                eq_circuit(p, pts[k].v_scale * p->v_ll_rated_v / math_sqrt_f64(3.0), 50.0, w);
+            double te, ipk;
+            run_locked(m, pts[k].slip, pts[k].v_scale, &te, &ipk);
+            const double err_te = te / e.te_nm - 1.0;
+            const double err_i = ipk / (math_sqrt_f64(2.0) * e.is_rms) - 1.0;
+            UT_CHECK(abs_d(err_te) < 0.005);
+            UT_CHECK(abs_d(err_i) < 0.005);
+            UT_EQ_INT(motor_sat(m), 0);
+            worst_te = max_d(worst_te, abs_d(err_te));
+            worst_i = max_d(worst_i, abs_d(err_i));
+            ut_info("%s s=%.3f V=%.2f Vr: Te %.4f N m (circuit %.4f, %.2e), Ipk %.3f A (%.2e)",
+                    twin_name[t], pts[k].slip, pts[k].v_scale, te, e.te_nm, err_te, ipk, err_i);
+        }
+        ut_info("%s worst: torque %.2e, current %.2e", twin_name[t], worst_te, worst_i);
+    }
+}
+
+/*
+ * Direct-on-line start at rated voltage and frequency with no load; returns
+ * the final speed, the peak phase current and the time to 95 % of
+ * synchronous speed.
+ */
+static void run_free_accel(motor *m, const induction_motor_params *p, int steps, double *w_end,
+                           double *ipk, double *t95) {
+    const double ws = MATH_TWO_PI_F64 * p->f_rated_hz / (double)p->pole_pairs;
+    sine3 stim;
+    double v[3];
+    motor_out out;
+    sine3_init(&stim, p->f_rated_hz);
+    UT_EQ_INT(motor_init(m, m->kind, p, NULL), INDUCTION_MOTOR_OK);
+    *ipk = 0.0;
+    *t95 = -1.0;
+    for (int n = 0; n < steps; n++) {
+        sine3_next(&stim, rated_peak_v(p), v);
+        motor_step(m, v, &out);
+        for (int k = 0; k < 3; k++) {
+            *ipk = max_d(*ipk, abs_d(out.i[k]));
+        }
+        if ((*t95 < 0.0) && (out.w > 0.95 * ws)) {
+            *t95 = (double)(n + 1) * STEP_S;
+        }
+    }
+    *w_end = out.w;
+}
+
+static void test_free_acceleration(void) {
+    const induction_motor_params *p4 = &induction_motor_params_4kw_star;
+    const induction_motor_params *p15 = &induction_motor_params_15kw_delta;
+    const double ws = MATH_PI_F64 * 50.0;
+    double w_end, ipk, t95;
+
+    UT_TEST("free acceleration, no load, 400 V 50 Hz direct on line (4 kW set, peak current "
+            "inside the 256 A base): reaches synchronous speed within 0.1 % in 0.5 s, both "
+            "twins, no saturation");
+    for (int t = 0; t < 2; t++) {
+        motor *m = &motor_a;
+        m->kind = (twin_kind)t;
+        run_free_accel(m, p4, 5000, &w_end, &ipk, &t95);
+        UT_CHECK(abs_d(w_end / ws - 1.0) < 1e-3);
+        UT_CHECK(ipk < 0.9 * DRIVE_BASE_CURRENT_A);
+        UT_EQ_INT(motor_sat(m), 0);
+        ut_info("%s: w %.4f rad/s (sync %.4f, slip %.2e), 95 %% at %.3f s, peak %.1f A",
+                twin_name[t], w_end, ws, 1.0 - w_end / ws, t95, ipk);
+    }
+
+    UT_TEST("free acceleration of the drive's 15 kW machine at 230 V 50 Hz direct on line: the "
+            "float twin reaches synchronous speed within 0.1 % in 0.4 s; the fixed twin, whose "
+            "currents exceed the 256 A base, saturates, counts it and still runs up");
+    motor_a.kind = TWIN_FLOAT;
+    run_free_accel(&motor_a, p15, 4000, &w_end, &ipk, &t95);
+    UT_CHECK(abs_d(w_end / ws - 1.0) < 1e-3);
+    ut_info("float: w %.4f rad/s (slip %.2e), 95 %% at %.3f s, peak %.1f A", w_end,
+            1.0 - w_end / ws, t95, ipk);
+    motor_a.kind = TWIN_FIXED;
+    run_free_accel(&motor_a, p15, 4000, &w_end, &ipk, &t95);
+    UT_CHECK(motor_sat(&motor_a) > 0u);
+    UT_CHECK(abs_d(w_end / ws - 1.0) < 1e-2);
+    ut_info("fixed: %u saturation events, w %.4f rad/s, peak output %.1f A",
+            (unsigned)motor_sat(&motor_a), w_end, ipk);
+}
+
+static void test_double_twin(void) {
+    static induction_motor_f64 m64;
+    const induction_motor_params *p = &induction_motor_params_4kw_star;
+    induction_motor_out_f64 out;
+    sine3 stim;
+    double v[3];
+    motor_out o32;
+    UT_TEST("double twin: the same free acceleration as the float twin, within 1e-4 of "
+            "synchronous speed over 0.2 s");
+    motor_a.kind = TWIN_FLOAT;
+    UT_EQ_INT(motor_init(&motor_a, TWIN_FLOAT, p, NULL), INDUCTION_MOTOR_OK);
+    UT_EQ_INT(induction_motor_init_f64(&m64, p, NULL, STEP_S), INDUCTION_MOTOR_OK);
+    sine3_init(&stim, 50.0);
+    double dw = 0.0;
+    for (int n = 0; n < 2000; n++) {
+        induction_motor_in_f64 in;
+        sine3_next(&stim, rated_peak_v(p), v);
+        in.v_a = v[0];
+        in.v_b = v[1];
+        in.v_c = v[2];
+        induction_motor_step_f64(&m64, &in, &out);
+        motor_step(&motor_a, v, &o32);
+        dw = max_d(dw, abs_d(out.w_radps - o32.w));
+    }
+    UT_CHECK(dw < 1e-4 * MATH_PI_F64 * 50.0);
+    UT_NEAR(out.i_a + out.i_b + out.i_c, 0.0, 1e-12);
+    ut_info("largest speed difference double - float: %.3e rad/s", dw);
+}
+
+/*
+ * V/f start against the propeller: f rises linearly from 0 to 50.67 Hz in
+ * 1 s (the slip of 1500 rpm at full load), the peak phase voltage follows
+ * at 230.9 V * sqrt(2/3) per 50 Hz, then both are held for 0.5 s. Both
+ * twins run in lockstep on the same step-midpoint voltages.
+ */
+#define RAMP_STEPS 10000
+#define HOLD_STEPS 5000
+#define F_END_HZ 50.67
+
+static void ramp_voltages(int n, double v[3]) {
+    const induction_motor_params *p = &induction_motor_params_15kw_delta;
+    const double f_per_step = F_END_HZ / (double)RAMP_STEPS;
+    const double nm = (double)n + 0.5;
+    double theta, f, s, c;
+    if (n < RAMP_STEPS) {
+        f = f_per_step * nm;
+        theta = MATH_PI_F64 * f_per_step * nm * nm * STEP_S;
+    } else {
+        f = F_END_HZ;
+        theta = MATH_PI_F64 * F_END_HZ * (double)RAMP_STEPS * STEP_S +
+                MATH_TWO_PI_F64 * F_END_HZ * (nm - (double)RAMP_STEPS) * STEP_S;
+    }
+    math_sincos_f64(math_wrap_pi_f64(theta), &s, &c);
+    phases_from_vector(c_make(rated_peak_v(p) * f / 50.0 * c, rated_peak_v(p) * f / 50.0 * s), v);
+}
+
+static void test_ramp(void) {
+    const induction_motor_params *p = &induction_motor_params_15kw_delta;
+    propeller_model prop = propeller();
+    energy_acc acc[2];
+    motor *m[2] = {&motor_a, &motor_b};
+    motor_out out[2];
+    double di = 0.0, dw = 0.0, ipk = 0.0;
+    double v[3];
+    for (int t = 0; t < 2; t++) {
+        UT_EQ_INT(motor_init(m[t], (twin_kind)t, p, &prop), INDUCTION_MOTOR_OK);
+        energy_start(&acc[t], m[t]);
+    }
+    for (int n = 0; n < RAMP_STEPS + HOLD_STEPS; n++) {
+        ramp_voltages(n, v);
+        for (int t = 0; t < 2; t++) {
+            motor_step(m[t], v, &out[t]);
+            energy_add(&acc[t], m[t], v, &out[t]);
+        }
+        for (int k = 0; k < 3; k++) {
+            di = max_d(di, abs_d(out[0].i[k] - out[1].i[k]));
+            ipk = max_d(ipk, abs_d(out[1].i[k]));
+        }
+        dw = max_d(dw, abs_d(out[0].w - out[1].w) / max_d(abs_d(out[1].w), 1.0));
+    }
+
+    UT_TEST("V/f start to 1500 rpm against the propeller: energy balance (input = copper + "
+            "magnetic + kinetic + load work) within 1 % of the input, both twins");
+    for (int t = 0; t < 2; t++) {
+        double d_mag, d_kin;
+        const double res = energy_residual(&acc[t], m[t], &d_mag, &d_kin);
+        UT_CHECK(abs_d(res) < 0.01);
+        ut_info("%s: in %.2f J = copper %.2f + magnetic %.3f + kinetic %.2f + load %.2f; "
+                "air gap %.2f; residual %.2e",
+                twin_name[t], acc[t].e_in, acc[t].e_cu, d_mag, d_kin, acc[t].w_load, acc[t].w_air,
+                res);
+    }
+
+    UT_TEST("V/f start: fixed against float on the same stimulus, phase currents within 1 % of "
+            "256 A and speed within 0.5 % at every step; no saturation");
+    UT_CHECK(di < 0.01 * DRIVE_BASE_CURRENT_A);
+    UT_CHECK(dw < 0.005);
+    UT_EQ_INT(motor_sat(m[0]), 0);
+    ut_info("largest differences: current %.4f A (%.2e of 256 A), speed %.2e (relative); "
+            "peak current %.1f A",
+            di, di / DRIVE_BASE_CURRENT_A, dw, ipk);
+
+    UT_TEST("drive point: 1500 rpm within 0.5 % against the propeller's 58.4 N m at 50.67 Hz, "
+            "234 V line to line (below the 240 V the bus gives at cut-off)");
+    const double v_ll = rated_peak_v(p) * F_END_HZ / 50.0 * math_sqrt_f64(1.5);
+    UT_CHECK(v_ll < 240.0);
+    for (int t = 0; t < 2; t++) {
+        const double rpm = out[t].w * 30.0 / MATH_PI_F64;
+        UT_NEAR(rpm, 1500.0, 7.5);
+        UT_NEAR(out[t].te, out[t].tl, 0.01 * out[t].tl);
+        ut_info("%s: %.2f rpm, Te %.3f N m, load %.3f N m, V_LL %.1f V", twin_name[t], rpm,
+                out[t].te, out[t].tl, v_ll);
+    }
+}
+
+static void test_extremes(void) {
+    static const q31_t levels[4] = {Q31_MAX, Q31_MIN, 0, Q31_MAX};
+    propeller_model prop = propeller();
+    induction_motor_out_q out;
+    UT_TEST("fixed twin is total: full-scale DC and common-mode inputs, and full-scale speeds of "
+            "both signs, saturate and count without a fault; reset clears the count");
+    UT_EQ_INT(induction_motor_init_q(&motor_a.q, &induction_motor_params_15kw_delta, &prop, STEP_S),
+              INDUCTION_MOTOR_OK);
+    induction_motor_set_speed_q(&motor_a.q, Q31_MIN, false);
+    for (int n = 0; n < 1200; n++) {
+        induction_motor_in_q in;
+        in.v_a = levels[(n / 300) & 3];
+        in.v_b = levels[((n / 300) + 1) & 3];
+        in.v_c = levels[((n / 300) + 2) & 3];
+        if (n == 600) {
+            induction_motor_set_speed_q(&motor_a.q, Q31_MAX, false);
+        }
+        induction_motor_step_q(&motor_a.q, &in, &out);
+    }
+    UT_CHECK(motor_a.q.sat_count > 0u);
+    ut_info("%u saturation events; final w %.1f rad/s, t_load %.1f N m",
+            (unsigned)motor_a.q.sat_count, q31_si(out.w, DRIVE_BASE_SPEED_RADPS),
+            q31_si(out.t_load, DRIVE_BASE_TORQUE_NM));
+    induction_motor_reset_q(&motor_a.q);
+    UT_EQ_INT(motor_a.q.sat_count, 0);
+}
+
+void suite_induction_motor(void) {
+    test_init();
+    test_steady_state();
+    test_free_acceleration();
+    test_double_twin();
+    test_ramp();
+    test_extremes();
+}
