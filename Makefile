@@ -200,9 +200,22 @@ test-run: host-all firmware tools
 	@HOST_VARIANTS="$(HOST_VARIANTS)" FW_VARIANTS="$(FW_VARIANTS)" BUILD="$(BUILD)" \
 	    sh tools/run-tests.sh
 
-run:
-	@echo "make run: the desk simulator is not built yet (it lands with the vessel and"
-	@echo "drive models); 'make test' runs what exists."
+# The main job: the float desk simulator on the default mission, with its
+# telemetry, a 2 us trace window, the JSON summary and the plots in out/.
+RUN_ARGS := --scenario scenarios/default.scn --csv out/telemetry.csv \
+            --trace out/trace.csv --trace-from 30 --trace-to 30.06
+
+run: $(BUILD)/linux-float/uuvsim
+	@mkdir -p out
+	$(BUILD)/linux-float/uuvsim $(RUN_ARGS)
+	@$(BUILD)/linux-float/uuvsim $(RUN_ARGS) --quiet --json > out/summary.json.partial && \
+	    mv out/summary.json.partial out/summary.json
+	@if command -v gnuplot >/dev/null 2>&1; then \
+	    gnuplot -e "dir='out'" tools/plots.gp && \
+	    echo "plots: out/trajectory.png depth.png speed.png shaft.png currents.png dc_link.png battery.png"; \
+	else \
+	    echo "gnuplot is missing: install it (apt-get install gnuplot-nox) for the plots"; \
+	fi
 
 clean:
 	rm -rf $(BUILD)

@@ -10,10 +10,11 @@
 
 static double abs_d(double v) { return v < 0.0 ? -v : v; }
 
-void manoeuvre_init(manoeuvre *m, bool zigzag, double threshold_rad) {
+void manoeuvre_init(manoeuvre *m, bool zigzag, double threshold_rad, double zigzag_start_s) {
     *m = (manoeuvre){0};
     m->r.zigzag = zigzag;
     m->zz_threshold_rad = threshold_rad;
+    m->zz_start_s = zigzag_start_s;
 }
 
 /* Position relative to the execute point, along and across the approach heading. */
@@ -77,7 +78,12 @@ static void turning_update(manoeuvre *m, double t, double x, double y, double ps
 }
 
 static void zigzag_update(manoeuvre *m, double t, double psi, double rudder_cmd) {
-    if (m->swing == 0 && m->n_reversals == 0u && m->last_rudder == 0.0 && rudder_cmd != 0.0) {
+    if (t < m->zz_start_s - 1e-9) {
+        return;
+    }
+    if (!m->zz_started) {
+        /* The heading when the zig-zag starts is its reference, as for the rule. */
+        m->zz_started = true;
         m->zz_psi0 = psi;
     }
     double rel = psi - m->zz_psi0;

@@ -50,7 +50,8 @@ typedef struct {
     double prev_x, prev_y, prev_dpsi;
     bool have_prev;
     /* Zig-zag state. */
-    double zz_threshold_rad, zz_psi0;
+    double zz_threshold_rad, zz_psi0, zz_start_s;
+    bool zz_started;
     double last_rudder;
     int swing;            /* +1 heading increasing phase, -1 decreasing, 0 before first */
     double extreme_rad;   /* extreme of psi - psi0 in the current swing */
@@ -60,8 +61,11 @@ typedef struct {
     size_t period_count;
 } manoeuvre;
 
-/* zigzag: whether the run is a zig-zag (then threshold [rad] is used). */
-void manoeuvre_init(manoeuvre *m, bool zigzag, double threshold_rad);
+/*
+ * zigzag: whether the run has a zig-zag (then threshold [rad] and its start
+ * time [s] are used, and no turning circle is measured).
+ */
+void manoeuvre_init(manoeuvre *m, bool zigzag, double threshold_rad, double zigzag_start_s);
 
 /*
  * Feeds one slow frame: time [s], North and East position [m], heading

@@ -60,6 +60,10 @@ for v in $HOST_VARIANTS; do
     run "host $v unit_tests" pass "$BUILD/$v/unit_tests"
 done
 run "host linux-fixed must-fail" fail "$BUILD/linux-fixed/unit_tests_mustfail"
+for v in linux-fixed linux-float; do
+    run "host $v uuvsim end-to-end" pass sh tests/host/test_uuvsim_cli.sh "$BUILD/$v/uuvsim" \
+        "$BUILD/tools/csvdiff"
+done
 run "host math vs libm" pass "$BUILD/tools/test_math_libm"
 run "host check_tables (exhaustive)" pass "$BUILD/tools/check_tables"
 run "host wavetable_data.c = generator" pass "$BUILD/tools/gen_wavetables" --check \

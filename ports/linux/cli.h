@@ -8,16 +8,20 @@
 #include <stdbool.h>
 #include <stddef.h>
 
+#include "executive.h"
+
 typedef enum { CLI_RUN, CLI_DERIVS, CLI_HELP, CLI_VERSION } cli_action;
 
 typedef struct {
     cli_action action;
     const char *scenario_path;  /* --scenario */
     const char *csv_path;       /* --csv */
+    const char *trace_path;     /* --trace */
     const char *derivs_path;    /* derivs FILE */
-    double duration_s;          /* --duration; 0: the scenario's */
-    int plant;                  /* sim_plant */
-    int propulsion;             /* vessel_propulsion */
+    double trace_from_s;        /* --trace-from */
+    double trace_to_s;          /* --trace-to */
+    exec_config exec;           /* plant, laws, inverter, couplings, rates, duration */
+    bool realtime;
     bool json;
     bool quiet;
 } cli_options;

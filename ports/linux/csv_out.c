@@ -1,62 +1,94 @@
 /*
- * CSV telemetry writer (see csv_out.h).
+ * Output files (see csv_out.h).
  */
 #include "csv_out.h"
 
 #include <errno.h>
 #include <string.h>
 
-bool csv_out_open(csv_out *c, const char *path) {
-    *c = (csv_out){0};
-    if (strlen(path) >= sizeof c->path) {
+bool out_open(out_file *o, const char *path) {
+    *o = (out_file){0};
+    if (strlen(path) >= sizeof o->path) {
         fprintf(stderr, "uuvsim: %s: path too long\n", path);
         return false;
     }
-    strcpy(c->path, path);
-    snprintf(c->partial, sizeof c->partial, "%s.partial", path);
-    c->f = fopen(c->partial, "w");
-    if (c->f == NULL) {
+    strcpy(o->path, path);
+    snprintf(o->partial, sizeof o->partial, "%s.partial", path);
+    o->f = fopen(o->partial, "w");
+    if (o->f == NULL) {
         fprintf(stderr, "uuvsim: %s: cannot write: %s\n", path, strerror(errno));
         return false;
     }
-    fputs("t_s", c->f);
-    for (int i = 0; i < VESSEL_NSTATES; i++) {
-        fprintf(c->f, ",%s", vessel_state_names[i]);
-    }
-    for (int i = 0; i < SIM_NCMD; i++) {
-        fprintf(c->f, ",%s", sim_command_names[i]);
-    }
-    fputc('\n', c->f);
     return true;
 }
 
-void csv_out_frame(csv_out *c, const sim_frame *f) {
-    fprintf(c->f, "%.17g", f->t_s);
-    for (int i = 0; i < VESSEL_NSTATES; i++) {
-        fprintf(c->f, ",%.17g", f->x[i]);
+bool out_close(out_file *o) {
+    if (o->f == NULL) {
+        return true;
     }
-    for (int i = 0; i < SIM_NCMD; i++) {
-        fprintf(c->f, ",%.17g", f->cmd[i]);
-    }
-    fputc('\n', c->f);
-}
-
-bool csv_out_close(csv_out *c) {
-    bool ok = !ferror(c->f);
-    ok = (fclose(c->f) == 0) && ok;
-    c->f = NULL;
-    if (!ok || rename(c->partial, c->path) != 0) {
-        fprintf(stderr, "uuvsim: %s: cannot write: %s\n", c->path, strerror(errno));
-        remove(c->partial);
+    bool ok = !ferror(o->f);
+    ok = (fclose(o->f) == 0) && ok;
+    o->f = NULL;
+    if (!ok || rename(o->partial, o->path) != 0) {
+        fprintf(stderr, "uuvsim: %s: cannot write: %s\n", o->path, strerror(errno));
+        remove(o->partial);
         return false;
     }
     return true;
 }
 
-void csv_out_abort(csv_out *c) {
-    if (c->f != NULL) {
-        fclose(c->f);
-        c->f = NULL;
-        remove(c->partial);
+void out_abort(out_file *o) {
+    if (o->f != NULL) {
+        fclose(o->f);
+        o->f = NULL;
+        remove(o->partial);
     }
+}
+
+static const char *const drive_columns[] = {"te_nm", "i_rms_a", "v_dc", "i_batt_a",
+                                            "soc", "m_index", "f_hz"};
+
+void csv_header(FILE *f, bool full_plant) {
+    fputs("t_s", f);
+    for (int i = 0; i < VESSEL_NSTATES; i++) {
+        fprintf(f, ",%s", vessel_state_names[i]);
+    }
+    for (int i = 0; i < EXEC_NCMD; i++) {
+        fprintf(f, ",%s", exec_command_names[i]);
+    }
+    if (full_plant) {
+        for (size_t i = 0; i < sizeof drive_columns / sizeof drive_columns[0]; i++) {
+            fprintf(f, ",%s", drive_columns[i]);
+        }
+    }
+    fputc('\n', f);
+}
+
+void csv_row(FILE *f, const exec_frame *r, bool full_plant) {
+    fprintf(f, "%.17g", r->t_s);
+    for (int i = 0; i < VESSEL_NSTATES; i++) {
+        fprintf(f, ",%.17g", r->x[i]);
+    }
+    for (int i = 0; i < EXEC_NCMD; i++) {
+        fprintf(f, ",%.17g", r->cmd[i]);
+    }
+    if (full_plant) {
+        fprintf(f, ",%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g", r->te_nm, r->i_rms_a,
+                r->v_dc_v, r->i_batt_a, r->soc, r->m_index, r->f_hz);
+    }
+    fputc('\n', f);
+}
+
+void trace_header(FILE *f) {
+    fputs("t_s,sa,sb,sc,m_index,f_hz,v_dc,v_an,v_bn,v_cn,vc_a,vc_b,vc_c,i_a,i_b,i_c,i_dc,"
+          "n_rpm,te_nm\n",
+          f);
+}
+
+void trace_row(FILE *f, double t_s, const drive_trace_row *r) {
+    fprintf(f, "%.9g,%u,%u,%u,%.6g,%.6g,%.7g,%.7g,%.7g,%.7g,%.7g,%.7g,%.7g,%.7g,%.7g,%.7g,%.7g,"
+               "%.7g,%.7g\n",
+            t_s, r->s[0], r->s[1], r->s[2], r->m_index, r->f_hz, r->v_dc, r->v_inv[0],
+            r->v_inv[1], r->v_inv[2], r->v_cap[0], r->v_cap[1], r->v_cap[2], r->i_motor[0],
+            r->i_motor[1], r->i_motor[2], r->i_dc, r->n_rpm, r->te_nm);
 }

@@ -11,10 +11,10 @@
 #include <string.h>
 
 #include "models/vessel.h"
-#include "sim.h"
+#include "executive.h"
 
 #define LINE_MAX_BYTES 8192
-#define NCOLS_IN (1 + SIM_NCMD + VESSEL_NSTATES)
+#define NCOLS_IN (1 + EXEC_NCMD + VESSEL_NSTATES)
 
 int uuvsim_derivs(const char *path);
 
@@ -22,11 +22,11 @@ int uuvsim_derivs(const char *path);
 static int check_header(const char *path, char *line) {
     const char *expected[NCOLS_IN];
     expected[0] = "case";
-    for (int i = 0; i < SIM_NCMD; i++) {
-        expected[1 + i] = sim_command_names[i];
+    for (int i = 0; i < EXEC_NCMD; i++) {
+        expected[1 + i] = exec_command_names[i];
     }
     for (int i = 0; i < VESSEL_NSTATES; i++) {
-        expected[1 + SIM_NCMD + i] = vessel_state_names[i];
+        expected[1 + EXEC_NCMD + i] = vessel_state_names[i];
     }
     char *save = NULL;
     char *tok = strtok_r(line, ",\r\n", &save);
@@ -108,7 +108,7 @@ int uuvsim_derivs(const char *path) {
         cmd.bow_port_rad = r[3];
         cmd.bow_stbd_rad = r[4];
         cmd.n_rpm = r[5];
-        (void)vessel_derivatives(&m, &r[1 + SIM_NCMD], &cmd, &r[NCOLS_IN]);
+        (void)vessel_derivatives(&m, &r[1 + EXEC_NCMD], &cmd, &r[NCOLS_IN]);
         nrows++;
     }
     fclose(f);
@@ -118,8 +118,8 @@ int uuvsim_derivs(const char *path) {
     }
     if (status == 0) {
         fputs("case", stdout);
-        for (int i = 0; i < SIM_NCMD; i++) {
-            printf(",%s", sim_command_names[i]);
+        for (int i = 0; i < EXEC_NCMD; i++) {
+            printf(",%s", exec_command_names[i]);
         }
         for (int i = 0; i < VESSEL_NSTATES; i++) {
             printf(",%s", vessel_state_names[i]);

@@ -1,24 +1,23 @@
 /*
- * uuvsim: the desk simulator. Reads a scenario, runs it, writes the
- * slow-rate telemetry as CSV and prints a summary (text or JSON).
+ * uuvsim: the desk simulator. Reads a scenario, runs the executive in
+ * virtual time (as fast as it can, or paced to the wall clock), writes the
+ * telemetry and trace files and prints a summary, as text or JSON.
  *
- * Exit status: 0 success, 2 bad input (options, scenario, files); 1 an
- * internal failure. Output files are written under a temporary name and
- * renamed when complete, so a failed run leaves no half-written file.
+ * Exit status: 0 success; 2 bad input (options, scenario, files); 1 the
+ * run stopped early (an overrun) or an internal failure.
  */
 #include <errno.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 #include <time.h>
+#include <unistd.h>
 
 #include "cli.h"
 #include "csv_out.h"
-#include "hal_linux.h"
-#include "sim.h"
 #include "uuv_config.h"
 
-#define UUVSIM_VERSION "0.1.0"
+#define UUVSIM_VERSION "0.2.0"
 #define MAX_SCENARIO_BYTES (1u << 20)
 
 int uuvsim_derivs(const char *path); /* derivs.c */
@@ -29,83 +28,129 @@ static double wall_seconds(void) {
     return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
 }
 
-/* Reads the whole scenario file; prints the error and returns NULL on failure. */
-static char *read_file(const char *path, size_t *len) {
+/* Reads and parses the scenario; prints the error (file:line: field) on failure. */
+static bool load_scenario(const char *path, scenario *scn) {
     FILE *f = fopen(path, "rb");
     if (f == NULL) {
         fprintf(stderr, "uuvsim: %s: cannot open: %s\n", path, strerror(errno));
-        return NULL;
+        return false;
     }
     char *buf = malloc(MAX_SCENARIO_BYTES + 1u);
     size_t n = buf ? fread(buf, 1, MAX_SCENARIO_BYTES + 1u, f) : 0u;
-    int bad = ferror(f);
+    bool bad = ferror(f) != 0;
     fclose(f);
-    if (buf == NULL || bad) {
-        fprintf(stderr, "uuvsim: %s: cannot read\n", path);
+    if (buf == NULL || bad || n > MAX_SCENARIO_BYTES) {
+        fprintf(stderr, "uuvsim: %s: %s\n", path,
+                n > MAX_SCENARIO_BYTES ? "larger than 1 MiB" : "cannot read");
         free(buf);
-        return NULL;
+        return false;
     }
-    if (n > MAX_SCENARIO_BYTES) {
-        fprintf(stderr, "uuvsim: %s: larger than %u bytes\n", path, MAX_SCENARIO_BYTES);
-        free(buf);
-        return NULL;
+    scenario_error err;
+    bool ok = scenario_parse(scn, buf, n, &err);
+    free(buf);
+    if (!ok) {
+        fprintf(stderr, "uuvsim: %s:%u: %s%s%s%s\n", path, err.line,
+                err.field[0] ? "field '" : "", err.field, err.field[0] ? "': " : "",
+                err.message);
     }
-    *len = n;
-    return buf;
+    return ok;
 }
 
-static void print_summary(const cli_options *o, const sim *s, const sim_frame *last,
-                          double wall_s) {
-    const manoeuvre_result *m = sim_manoeuvre(s);
-    double sim_s = last->t_s;
-    double rtf = wall_s > 0.0 ? sim_s / wall_s : 0.0;
-    static const char *const plants[] = {"vessel", "full"};
-    static const char *const laws[] = {"mss", "paper"};
-    if (o->json) {
-        printf("{\n  \"build\": \"%s\",\n  \"mode\": \"multi-rate\",\n", UUV_NUMERIC_NAME);
-        printf("  \"plant\": \"%s\",\n  \"propulsion\": \"%s\",\n", plants[o->plant],
-               laws[o->propulsion]);
-        printf("  \"sim_time_s\": %.6g,\n  \"wall_time_s\": %.6g,\n", sim_s, wall_s);
-        printf("  \"realtime_factor\": %.6g,\n", rtf);
-        printf("  \"steps\": {\"fast\": 0, \"medium\": 0, \"control\": 0, \"slow\": %u},\n",
-               (unsigned)last->index);
-        printf("  \"final\": {");
-        for (int i = 0; i < 12; i++) {
-            printf("\"%s\": %.10g, ", vessel_state_names[i], last->x[i]);
-        }
-        printf("\"n_rpm\": %.10g}", last->x[VESSEL_N_RPM]);
-        if (m->turn_executed && !m->zigzag) {
-            printf(",\n  \"turning_circle\": {\"advance_m\": %.6g, \"transfer_m\": %.6g, "
-                   "\"tactical_diameter_m\": %.6g, \"steady_diameter_m\": %.6g, "
-                   "\"speed_loss_pct\": %.6g}",
-                   m->has_advance ? m->advance_m : 0.0, m->has_advance ? m->transfer_m : 0.0,
-                   m->has_tactical ? m->tactical_diameter_m : 0.0,
-                   m->has_steady ? m->steady_diameter_m : 0.0,
-                   m->has_steady ? m->speed_loss_pct : 0.0);
-        }
-        if (m->zigzag) {
-            printf(",\n  \"zigzag\": {\"overshoot_deg\": [");
-            for (size_t i = 0; i < m->n_overshoots; i++) {
-                printf("%s%.6g", i ? ", " : "", m->overshoot_deg[i]);
-            }
-            printf("], \"period_s\": %.6g}", m->period_s);
-        }
-        printf("\n}\n");
-        return;
+typedef struct {
+    const cli_options *o;
+    exec *e;
+    exec_frame last;
+    double wall_s;
+    double realtime_lag_max_s; /* [s] worst lag of the simulation behind the wall clock */
+    uint32_t realtime_late;    /* reports produced after their wall-clock time */
+} run_result;
+
+static const char *const plant_names[] = {"vessel", "full"};
+static const char *const law_names[] = {"mss", "paper"};
+static const char *const inverter_names[] = {"switching", "averaged", "event"};
+static const char *const down_names[] = {"zoh", "foh", "deriv", "stagger"};
+static const char *const up_names[] = {"avg", "filter", "sample"};
+
+static void print_json(const run_result *r) {
+    const exec *e = r->e;
+    const exec_frame *f = &r->last;
+    const manoeuvre_result *m = exec_manoeuvre(e);
+    double sim_s = f->t_s;
+    printf("{\n  \"build\": \"%s\",\n  \"mode\": \"%s\",\n", UUV_NUMERIC_NAME,
+           e->cfg.single_rate ? "single-rate" : "multi-rate");
+    printf("  \"plant\": \"%s\",\n  \"propulsion\": \"%s\",\n  \"inverter\": \"%s\",\n",
+           plant_names[e->cfg.plant], law_names[e->cfg.propulsion],
+           inverter_names[e->cfg.inverter]);
+    printf("  \"slow_to_fast\": \"%s\",\n  \"fast_to_slow\": \"%s\",\n", down_names[e->cfg.down],
+           up_names[e->cfg.up]);
+    printf("  \"sim_time_s\": %.9g,\n  \"wall_time_s\": %.6g,\n  \"realtime_factor\": %.6g,\n",
+           sim_s, r->wall_s, r->wall_s > 0.0 ? sim_s / r->wall_s : 0.0);
+    printf("  \"steps\": {\"fast\": %llu, \"medium\": %llu, \"control\": %llu, \"slow\": %llu},\n",
+           (unsigned long long)e->count.fast, (unsigned long long)e->count.medium,
+           (unsigned long long)e->count.control, (unsigned long long)e->count.slow);
+    printf("  \"overruns\": %u,\n  \"saturations\": %u,\n",
+           e->count.overruns_medium + e->count.overruns_slow, e->count.saturations);
+    printf("  \"energy_wh\": %.9g,\n  \"mechanical_energy_wh\": %.9g,\n",
+           e->count.e_batt_j / 3600.0, e->count.e_mech_j / 3600.0);
+    if (r->o->realtime) {
+        printf("  \"realtime_lag_max_s\": %.6g,\n  \"realtime_late_frames\": %u,\n",
+               r->realtime_lag_max_s, r->realtime_late);
     }
-    printf("uuvsim %s, %s build: plant %s, propulsion %s\n", UUVSIM_VERSION, UUV_NUMERIC_NAME,
-           plants[o->plant], laws[o->propulsion]);
-    printf("simulated %.1f s in %.3f s of wall time (%.0fx real time), %u slow frames\n",
-           sim_s, wall_s, rtf, (unsigned)last->index);
-    printf("final: u %.3f m/s, position N %.1f E %.1f depth %.2f m, heading %.1f deg, "
+    printf("  \"final\": {");
+    for (int i = 0; i < 12; i++) {
+        printf("\"%s\": %.10g, ", vessel_state_names[i], f->x[i]);
+    }
+    printf("\"n_rpm\": %.10g, \"soc\": %.10g}", f->x[VESSEL_N_RPM],
+           e->cfg.plant == EXEC_PLANT_FULL ? e->bat.soc : 1.0);
+    if (m->turn_executed && !m->zigzag) {
+        printf(",\n  \"turning_circle\": {\"advance_m\": %.6g, \"transfer_m\": %.6g, "
+               "\"tactical_diameter_m\": %.6g, \"steady_diameter_m\": %.6g, "
+               "\"speed_loss_pct\": %.6g}",
+               m->advance_m, m->transfer_m, m->tactical_diameter_m, m->steady_diameter_m,
+               m->speed_loss_pct);
+    }
+    if (m->zigzag) {
+        printf(",\n  \"zigzag\": {\"overshoot_deg\": [");
+        for (size_t i = 0; i < m->n_overshoots; i++) {
+            printf("%s%.6g", i ? ", " : "", m->overshoot_deg[i]);
+        }
+        printf("], \"period_s\": %.6g}", m->period_s);
+    }
+    printf("\n}\n");
+}
+
+static void print_text(const run_result *r) {
+    const exec *e = r->e;
+    const exec_frame *f = &r->last;
+    const manoeuvre_result *m = exec_manoeuvre(e);
+    double rtf = r->wall_s > 0.0 ? f->t_s / r->wall_s : 0.0;
+    printf("uuvsim %s, %s build, %s: plant %s, propulsion %s", UUVSIM_VERSION, UUV_NUMERIC_NAME,
+           e->cfg.single_rate ? "single-rate" : "multi-rate", plant_names[e->cfg.plant],
+           law_names[e->cfg.propulsion]);
+    if (e->cfg.plant == EXEC_PLANT_FULL) {
+        printf(", inverter %s, couplings %s/%s", inverter_names[e->cfg.inverter],
+               down_names[e->cfg.down], up_names[e->cfg.up]);
+    }
+    printf("\nsimulated %.1f s in %.3f s (%.0fx real time)\n", f->t_s, r->wall_s, rtf);
+    if (e->cfg.plant == EXEC_PLANT_FULL) {
+        printf("steps: %llu fast, %llu motor, %llu control, %llu slow; %u overruns, "
+               "%u saturations\n",
+               (unsigned long long)e->count.fast, (unsigned long long)e->count.medium,
+               (unsigned long long)e->count.control, (unsigned long long)e->count.slow,
+               e->count.overruns_medium + e->count.overruns_slow, e->count.saturations);
+        printf("battery: %.1f Wh drawn, state of charge %.4f, DC link %.1f V\n",
+               e->count.e_batt_j / 3600.0, e->bat.soc, f->v_dc_v);
+    }
+    printf("final: u %.3f m/s, N %.1f m, E %.1f m, depth %.2f m, heading %.1f deg, "
            "shaft %.0f rpm\n",
-           last->x[VESSEL_U_MPS], last->x[VESSEL_X_M], last->x[VESSEL_Y_M],
-           last->x[VESSEL_Z_M], last->x[VESSEL_PSI_RAD] * 57.29577951308232,
-           last->x[VESSEL_N_RPM]);
+           f->x[VESSEL_U_MPS], f->x[VESSEL_X_M], f->x[VESSEL_Y_M], f->x[VESSEL_Z_M],
+           f->x[VESSEL_PSI_RAD] * 57.29577951308232, f->x[VESSEL_N_RPM]);
     if (m->turn_executed && !m->zigzag) {
         printf("turning circle:");
         if (m->has_advance) {
             printf(" advance %.1f m, transfer %.1f m", m->advance_m, m->transfer_m);
+        } else {
+            printf(" the heading did not change by 90 deg");
         }
         if (m->has_tactical) {
             printf(", tactical diameter %.1f m", m->tactical_diameter_m);
@@ -113,9 +158,6 @@ static void print_summary(const cli_options *o, const sim *s, const sim_frame *l
         if (m->has_steady) {
             printf(", steady diameter %.1f m, speed loss %.1f %%", m->steady_diameter_m,
                    m->speed_loss_pct);
-        }
-        if (!m->has_advance) {
-            printf(" the heading did not change by 90 deg");
         }
         printf("\n");
     }
@@ -126,73 +168,118 @@ static void print_summary(const cli_options *o, const sim *s, const sim_frame *l
         }
         printf(" deg; period %.1f s\n", m->period_s);
     }
+    if (e->state == EXEC_STOP_OVERRUN) {
+        printf("stopped early: a task overran its frame\n");
+    }
+}
+
+/* Sleeps until the wall clock reaches the simulated time t_s (from w0). */
+static void pace(run_result *r, double w0, double t_s) {
+    double ahead = t_s - (wall_seconds() - w0);
+    if (ahead > 0.0) {
+        struct timespec ts = {(time_t)ahead, (long)((ahead - (double)(time_t)ahead) * 1e9)};
+        nanosleep(&ts, NULL);
+    } else {
+        r->realtime_late++;
+        if (-ahead > r->realtime_lag_max_s) {
+            r->realtime_lag_max_s = -ahead;
+        }
+    }
 }
 
 static int run(const cli_options *o) {
-    size_t len = 0;
-    char *text = read_file(o->scenario_path, &len);
-    if (text == NULL) {
-        return 2;
-    }
     static scenario scn;
-    scenario_error err;
-    bool ok = scenario_parse(&scn, text, len, &err);
-    free(text);
-    if (!ok) {
-        fprintf(stderr, "uuvsim: %s:%u: %s%s%s%s\n", o->scenario_path, err.line,
-                err.field[0] ? "field '" : "", err.field, err.field[0] ? "': " : "",
-                err.message);
+    if (!load_scenario(o->scenario_path, &scn)) {
         return 2;
     }
-    if (o->duration_s <= 0.0 && scn.duration_s <= 0.0) {
+    if (o->exec.duration_s <= 0.0 && scn.duration_s <= 0.0) {
         fprintf(stderr, "uuvsim: %s: no duration (give 'duration <s>' or --duration)\n",
                 o->scenario_path);
         return 2;
     }
-    sim_config cfg;
-    sim_config_default(&cfg);
-    cfg.plant = (sim_plant)o->plant;
-    cfg.propulsion = (vessel_propulsion)o->propulsion;
-    cfg.duration_s = o->duration_s;
-    static sim s;
-    sim_status st = sim_init(&s, &cfg, &scn);
-    if (st == SIM_ERR_PLANT) {
-        fprintf(stderr, "uuvsim: --plant full: the electric drive is not in this version\n");
+    static exec e;
+    exec_status st = exec_init(&e, &o->exec, &scn);
+    if (st != EXEC_OK) {
+        fprintf(stderr, "uuvsim: %s\n",
+                st == EXEC_ERR_CONFIG ? "the frames, duration or options are out of range"
+                                      : "a model refused its parameters at these frames");
         return 2;
     }
-    if (st != SIM_OK) {
-        fprintf(stderr, "uuvsim: the simulation refused its configuration (status %d)\n",
-                (int)st);
+    bool full = (o->exec.plant == EXEC_PLANT_FULL);
+    out_file csv = {0};
+    out_file trace = {0};
+    if (o->csv_path != NULL && !out_open(&csv, o->csv_path)) {
         return 2;
     }
-    csv_out csv;
-    if (o->csv_path != NULL && !csv_out_open(&csv, o->csv_path)) {
+    if (o->trace_path != NULL && !out_open(&trace, o->trace_path)) {
+        out_abort(&csv);
         return 2;
+    }
+    if (csv.f != NULL) {
+        csv_header(csv.f, full);
+    }
+    uint64_t trace_first = 0u;
+    uint64_t trace_last = 0u;
+    if (trace.f != NULL) {
+        trace_header(trace.f);
+        double fast_s = 1e-9 * (double)e.cfg.fast_ns;
+        trace_first = (uint64_t)(o->trace_from_s / fast_s + 0.5);
+        trace_last = (uint64_t)(o->trace_to_s / fast_s + 0.5);
+    }
+    bool progress = !o->quiet && isatty(STDERR_FILENO);
+    run_result r = {o, &e, {0}, 0.0, 0.0, 0u};
+    (void)exec_report_take(&e, &r.last);
+    if (csv.f != NULL) {
+        csv_row(csv.f, &r.last, full);
     }
     double w0 = wall_seconds();
-    sim_frame f;
-    for (;;) {
-        sim_frame_get(&s, &f);
-        if (o->csv_path != NULL) {
-            csv_out_frame(&csv, &f);
+    double next_progress = w0 + 0.5;
+    while (e.state == EXEC_RUNNING) {
+        exec_desk_step(&e);
+        if (trace.f != NULL && e.count.fast >= trace_first && e.count.fast <= trace_last &&
+            full) {
+            drive_trace_row row;
+            drive_trace(&e.drive, &row);
+            trace_row(trace.f, exec_time_s(&e), &row);
         }
-        if (sim_done(&s)) {
-            break;
+        if (!e.report_ready) {
+            continue;
         }
-        sim_step(&s);
+        (void)exec_report_take(&e, &r.last);
+        if (csv.f != NULL) {
+            csv_row(csv.f, &r.last, full);
+        }
+        if (o->realtime) {
+            pace(&r, w0, r.last.t_s);
+        }
+        if (progress && wall_seconds() >= next_progress) {
+            next_progress += 0.5;
+            fprintf(stderr, "\r  t = %8.1f s  u = %5.2f m/s  depth %7.2f m  shaft %5.0f rpm ",
+                    r.last.t_s, r.last.x[VESSEL_U_MPS], r.last.x[VESSEL_Z_M],
+                    r.last.x[VESSEL_N_RPM]);
+        }
     }
-    double wall = wall_seconds() - w0;
-    if (o->csv_path != NULL && !csv_out_close(&csv)) {
+    r.wall_s = wall_seconds() - w0;
+    if (progress) {
+        fprintf(stderr, "\r%78s\r", "");
+    }
+    bool ok_files = out_close(&csv);
+    ok_files = out_close(&trace) && ok_files;
+    if (!ok_files) {
         return 2;
     }
     if (!o->quiet) {
-        print_summary(o, &s, &f, wall);
+        if (o->json) {
+            print_json(&r);
+        } else {
+            print_text(&r);
+        }
     }
-    return 0;
+    return e.state == EXEC_DONE ? 0 : 1;
 }
 
 int main(int argc, char **argv) {
-    cli_options o;
+    static cli_options o;
     char err[256];
     if (!cli_parse(argc, argv, &o, err, sizeof err)) {
         fprintf(stderr, "uuvsim: %s\n", err);

@@ -47,7 +47,7 @@ static bool vessel_params_valid(const vessel_params *p) {
 static bool vessel_probe(const vessel_model *m) {
     static const double x0[VESSEL_NSTATES] = {1.0, 0.1, 0.1, 0.01, 0.01, 0.01, 0.0, 0.0, 1.0,
                                               0.1, 0.1, 0.1, 0.1,  0.1,  0.1,  0.1, 500.0};
-    const vessel_cmd cmd = {0.0, 0.0, 0.0, 0.0, 500.0, 500.0, 0.0};
+    const vessel_cmd cmd = {0.0, 0.0, 0.0, 0.0, 500.0, 500.0, 0.0, 0.0};
     double dx[VESSEL_NSTATES];
     (void)vessel_derivatives(m, x0, &cmd, dx);
     bool ok = true;

@@ -84,8 +84,9 @@ typedef struct {
     double bow_port_rad; /* [rad] port bow plane command */
     double bow_stbd_rad; /* [rad] starboard bow plane command */
     double n_rpm;        /* [rpm] shaft speed command (VESSEL_SHAFT_LAG) */
-    double shaft_rpm;    /* [rpm] measured shaft speed (VESSEL_SHAFT_INPUT) */
+    double shaft_rpm;    /* [rpm] measured shaft speed at the step start (VESSEL_SHAFT_INPUT) */
     double delta_b_n;    /* [N] buoyancy change: B = B_nominal + delta_b_n, > 0 rises */
+    double shaft_rate_rpmps; /* [rpm/s] its rate over the step (VESSEL_SHAFT_INPUT; 0 holds it) */
 } vessel_cmd;
 
 typedef struct {
@@ -130,7 +131,8 @@ void vessel_reset_counters(vessel_model *m);
 /*
  * The state derivative dx = f(x, cmd). Returns the events that occurred as
  * bit flags (1u << vessel_event). In VESSEL_SHAFT_INPUT mode the shaft
- * speed is x[VESSEL_N_RPM] as it stands and its derivative is 0.
+ * speed is x[VESSEL_N_RPM] as it stands and its derivative is
+ * cmd->shaft_rate_rpmps.
  */
 unsigned vessel_derivatives(const vessel_model *m, const double x[VESSEL_NSTATES],
                             const vessel_cmd *cmd, double dx[VESSEL_NSTATES]);

@@ -11,7 +11,9 @@
  *
  * With the shaft speed taken from the motor (VESSEL_SHAFT_INPUT) the shaft
  * is not an actuator of the vessel: its state is the measured speed, used
- * as it is (no clamp, the motor's speed is physical), and its derivative is 0.
+ * as it is (no clamp, the motor's speed is physical), and its derivative is
+ * the rate the command gives (the motor's speed change over the frame, so
+ * that the step sees the speed ramp linearly between the frame's ends).
  */
 #include "math/umath.h"
 #include "models/vessel_internal.h"
@@ -63,7 +65,7 @@ unsigned vessel_actuators(const vessel_model *m, const double x[VESSEL_NSTATES],
         dact[4] = (cmd->n_rpm - n) * rate;
     } else {
         a->shaft_radps = x[VESSEL_N_RPM] * VESSEL_RADPS_PER_RPM;
-        dact[4] = 0.0;
+        dact[4] = cmd->shaft_rate_rpmps;
     }
     return (hit != 0u) ? VESSEL_FLAG(VESSEL_EVENT_ACTUATOR_LIMIT) : 0u;
 }

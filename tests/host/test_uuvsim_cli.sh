@@ -46,14 +46,16 @@ straight() {
 check "vessel run: straight 1300 rpm, every state at every row within 1e-6" straight
 
 twice() {
-    "$uuvsim" --quiet --scenario scenarios/zigzag_20_20.scn --csv "$tmp/a.csv" &&
-        "$uuvsim" --quiet --scenario scenarios/zigzag_20_20.scn --csv "$tmp/b.csv" &&
+    "$uuvsim" --quiet "$@" --csv "$tmp/a.csv" && "$uuvsim" --quiet "$@" --csv "$tmp/b.csv" &&
         cmp "$tmp/a.csv" "$tmp/b.csv"
 }
-check "vessel run: the same scenario twice gives byte-identical CSV" twice
+check "vessel run: the same scenario twice gives byte-identical CSV" \
+    twice --plant vessel --scenario scenarios/zigzag_20_20.scn
+check "full plant: the same scenario twice gives byte-identical CSV" \
+    twice --scenario scenarios/default.scn --duration 2
 
 summary_json() {
-    "$uuvsim" --json --scenario scenarios/turning_circle.scn >"$tmp/t.json" &&
+    "$uuvsim" --json --plant vessel --scenario scenarios/turning_circle.scn >"$tmp/t.json" &&
         grep -q '"tactical_diameter_m"' "$tmp/t.json" && grep -q '"build"' "$tmp/t.json"
 }
 check "summary: --json carries the build and the turning-circle metrics" summary_json
@@ -73,7 +75,7 @@ expect_error "error: unwritable CSV" "cannot write" \
 printf 'case,delta_r_cmd_rad\n1,2\n' >"$tmp/badd.csv"
 expect_error "error: derivs file with a wrong header" "badd.csv:1: column 3" \
     "$uuvsim" derivs "$tmp/badd.csv"
-expect_error "error: bad --plant value" "expected vessel or full" \
+expect_error "error: bad --plant value" "expected one of vessel|full" \
     "$uuvsim" --plant boat --scenario scenarios/turning_circle.scn
 
 echo "$pass passed, $fail failed"

@@ -46,7 +46,7 @@ static bool str_eq(const char *a, const char *b) {
 }
 
 static vessel_cmd cmd_of(const double c[5]) {
-    vessel_cmd cmd = {c[0], c[1], c[2], c[3], c[4], c[4], 0.0};
+    vessel_cmd cmd = {c[0], c[1], c[2], c[3], c[4], c[4], 0.0, 0.0};
     return cmd;
 }
 
@@ -222,7 +222,7 @@ static void test_paper_law(void) {
     const double u_ss = (-b + math_sqrt_f64(b * b - 4.0 * kd * c)) / (2.0 * kd);
     double x[VESSEL_NSTATES];
     zero_state(x);
-    const vessel_cmd cmd = {0.0, 0.0, 0.0, 0.0, 1000.0, 0.0, 0.0};
+    const vessel_cmd cmd = {0.0, 0.0, 0.0, 0.0, 1000.0, 0.0, 0.0, 0.0};
     double u_10s = 0.0, u_90s = 0.0;
     for (int k = 1; k <= 1000; k++) {
         (void)vessel_step(m, x, &cmd);
@@ -258,7 +258,7 @@ static void test_restoring(void) {
     x[VESSEL_PHI_RAD] = 0.2;
     x[VESSEL_THETA_RAD] = 0.3;
     x[VESSEL_PSI_RAD] = 1.0;
-    const vessel_cmd cmd = {0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 800.0};
+    const vessel_cmd cmd = {0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 800.0, 0.0};
     (void)vessel_derivatives(m, x, &cmd, dx);
     /*
      * W = 53400 N, B = 54200 N; x_G W - x_B B = 526, y_G W - y_B B = -805,
@@ -289,7 +289,7 @@ static void test_buoyancy(void) {
     UT_TEST("buoyancy: delta_B = +500 N raises the vehicle from rest (z < 0), -500 N sinks it");
     vessel_model *m = model_with(&vm_a, VESSEL_PROP_PAPER, VESSEL_SHAFT_LAG);
     double x[VESSEL_NSTATES];
-    vessel_cmd cmd = {0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 500.0};
+    vessel_cmd cmd = {0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 500.0, 0.0};
     zero_state(x);
     run(m, x, &cmd, 50);
     UT_CHECK(x[VESSEL_Z_M] < -0.1);
@@ -313,7 +313,7 @@ static void test_signs(void) {
     vessel_model *m = model_with(&vm_a, VESSEL_PROP_PAPER, VESSEL_SHAFT_LAG);
     double x[VESSEL_NSTATES];
     UT_TEST("signs: a positive rudder turns to port (r < 0, psi decreasing)");
-    vessel_cmd cmd = {0.1, 0.0, 0.0, 0.0, 1000.0, 0.0, 0.0};
+    vessel_cmd cmd = {0.1, 0.0, 0.0, 0.0, 1000.0, 0.0, 0.0, 0.0};
     cruise_state(x);
     run(m, x, &cmd, 100);
     UT_CHECK(x[VESSEL_R_RADPS] < 0.0);
@@ -335,7 +335,7 @@ static void test_signs(void) {
 static void test_guards(void) {
     vessel_model *m = model_with(&vm_a, VESSEL_PROP_MSS, VESSEL_SHAFT_LAG);
     double x[VESSEL_NSTATES], dx[VESSEL_NSTATES];
-    const vessel_cmd cmd = {0.0, 0.1, 0.0, 0.0, 1300.0, 0.0, 0.0};
+    const vessel_cmd cmd = {0.0, 0.1, 0.0, 0.0, 1300.0, 0.0, 0.0, 0.0};
     unsigned ev;
 
     UT_TEST("guards: u = -1e-10 (pole of the advance ratio) gives finite derivatives");
@@ -364,7 +364,7 @@ static void test_guards(void) {
     UT_TEST("trap kept from the source: under `mss` a vehicle at rest stays at rest at 1300 rpm");
     zero_state(x);
     x[VESSEL_N_RPM] = 1300.0;
-    const vessel_cmd fwd = {0.0, 0.0, 0.0, 0.0, 1300.0, 0.0, 0.0};
+    const vessel_cmd fwd = {0.0, 0.0, 0.0, 0.0, 1300.0, 0.0, 0.0, 0.0};
     run(m, x, &fwd, 10);
     UT_CHECK(x[VESSEL_U_MPS] == 0.0);
     UT_CHECK(x[VESSEL_X_M] == 0.0);
@@ -384,7 +384,7 @@ static void test_no_nan(void) {
     double x[VESSEL_NSTATES];
     UT_TEST("no NaN: 60 s of reversed shaft (-800 rpm) from 1 m/s under `mss` stay finite");
     vessel_model *m = model_with(&vm_a, VESSEL_PROP_MSS, VESSEL_SHAFT_LAG);
-    const vessel_cmd rev = {0.05, 0.05, 0.0, 0.0, -800.0, 0.0, 0.0};
+    const vessel_cmd rev = {0.05, 0.05, 0.0, 0.0, -800.0, 0.0, 0.0, 0.0};
     zero_state(x);
     x[VESSEL_U_MPS] = 1.0;
     UT_CHECK(run_finite(m, x, &rev, 600));
@@ -394,7 +394,7 @@ static void test_no_nan(void) {
     UT_TEST("no NaN: 60 s with every command beyond its limit (`paper`) stay finite; the "
             "actuator states wind up at (command - limit) / T_a");
     vessel_model *mp = model_with(&vm_b, VESSEL_PROP_PAPER, VESSEL_SHAFT_LAG);
-    const vessel_cmd big = {0.6, 0.6, 0.6, -0.6, 2000.0, 0.0, 0.0};
+    const vessel_cmd big = {0.6, 0.6, 0.6, -0.6, 2000.0, 0.0, 0.0, 0.0};
     double dx[VESSEL_NSTATES];
     zero_state(x);
     UT_CHECK(run_finite(mp, x, &big, 600));
@@ -467,7 +467,7 @@ static void test_determinism(void) {
             "logs (docs/vessel.md lists the value every port printed)");
     vessel_model *m = model_with(&vm_a, VESSEL_PROP_PAPER, VESSEL_SHAFT_LAG);
     double x[VESSEL_NSTATES];
-    const vessel_cmd cmd = {0.2, -0.1, 0.05, 0.1, 1200.0, 0.0, 150.0};
+    const vessel_cmd cmd = {0.2, -0.1, 0.05, 0.1, 1200.0, 0.0, 150.0, 0.0};
     cruise_state(x);
     x[VESSEL_PHI_RAD] = 0.1;
     run(m, x, &cmd, 100);

@@ -1,0 +1,288 @@
+/*
+ * The electric drive as the executive runs it: the fast segment (PWM,
+ * inverter, DC link and LC filter), the fast-medium segment (induction
+ * motor) and the slow-medium segment (controller), with the data that cross
+ * between them. One implementation per numeric build
+ * (drive_segment_fixed.c, drive_segment_float.c), chosen by UUV_NUMERIC;
+ * this interface is the same for both.
+ *
+ * The motor's fast companion. The motor runs at its 100 us frame, but the
+ * filter capacitors it loads are solved every 2 us; a motor current held
+ * over a frame would reach the filter a frame late, and that delay inside
+ * the LC resonance's loop makes it unstable. So the fast step carries the
+ * motor's stator current itself, by the motor's own stator equation with
+ * the slowly varying part frozen (paper section 3: the component exports
+ * what its terminal current does for the next step):
+ *   di_s/dt = a_ss (v_s - e_s),   a_ss = Lr / (Ls Lr - Lm^2) = 1 / (sigma Ls),
+ * where the EMF e_s is the motor's resistive drop and rotor-flux term. The
+ * motor task computes e for the frame it has just integrated as the value
+ * that reproduces its own current change with the frame's mean voltage,
+ *   e = vbar - (i_end - i_start) / (a_ss h),
+ * and reports how far the fast current has drifted from its own at the
+ * frame end; the fast step adds that difference at the next latch. The
+ * slow-to-fast coupling modes act on e: held (ZOH), extrapolated from the
+ * last two frames (FOH), extrapolated along its rotation de/dt = j w_s e
+ * (DERIV), or latched half a frame after the release (STAGGER).
+ *
+ * Who calls what, and where the data wait (see executive.h for when):
+ *   fast tick     drive_fast_tick() every fast step: one step of the power
+ *                 stage with the inputs latched at the last boundary, and
+ *                 the sums the slower segments need.
+ *   boundary      drive_medium_latch() and drive_medium_publish(), called
+ *                 by the fast tick at each motor-frame boundary: hands the frame's sums to the motor
+ *                 (input buffer) and latches what the motor and controller
+ *                 published (output buffers) as the fast inputs of the next
+ *                 frame. Nothing a slower task writes reaches the fast step
+ *                 except here, so results do not depend on where a fast
+ *                 tick preempts the slower task.
+ *   medium task   drive_medium_task(): one motor step on the frame's input
+ *                 buffer, the controller when due, the slow sums.
+ *   slow boundary drive_slow_exchange(), called by the medium task at a
+ *                 slow-frame boundary: the slow frame's measurements out,
+ *                 the slow segment's commands (battery companion, speed
+ *                 command) in.
+ */
+#ifndef UUV_DRIVE_SEGMENT_H
+#define UUV_DRIVE_SEGMENT_H
+
+#include <stdbool.h>
+#include <stdint.h>
+
+#include "models/drive_control.h"
+#include "models/induction_motor.h"
+#include "models/inverter_avg.h"
+#include "models/power_stage.h"
+#include "models/propeller.h"
+#include "models/pwm.h"
+#include "uuv_config.h"
+
+/* Inverter model (the paper's layered model). */
+typedef enum {
+    DRIVE_INVERTER_SWITCHING = 0, /* six switches at the fast step, switch states held per step */
+    DRIVE_INVERTER_AVERAGED,      /* leg duty cycles, run at the motor's frame */
+    DRIVE_INVERTER_EVENT          /* switching instants located inside the fast step */
+} drive_inverter;
+
+/* How a slower segment's output is applied over the faster one's steps. */
+typedef enum {
+    COUPLE_ZOH = 0,  /* zero-order hold: the last value for the whole frame */
+    COUPLE_FOH,      /* first-order hold: extrapolated from the last two values */
+    COUPLE_DERIV,    /* extrapolated with the derivative the slower model computes */
+    COUPLE_STAGGER   /* the slower segment runs half a frame later: values arrive mid-frame */
+} coupling_down;
+
+/* How a faster segment's output is reduced for a slower one. */
+typedef enum {
+    COUPLE_AVG = 0,  /* average over the frame */
+    COUPLE_FILTER,   /* first-order filter at the fast rate, time constant = the frame */
+    COUPLE_SAMPLE    /* the value at the boundary (aliases; kept for comparison) */
+} coupling_up;
+
+typedef struct {
+    drive_inverter inverter;
+    coupling_down down;       /* motor currents to the fast segment */
+    coupling_up up;           /* capacitor voltages to the motor, measurements to the slow segment */
+    uint32_t fast_ns;         /* [ns] power-stage step (the motor frame in averaged mode) */
+    uint32_t fast_per_medium; /* fast steps per motor frame */
+    uint32_t medium_per_control; /* motor frames per controller frame */
+    uint32_t medium_per_slow;    /* motor frames per slow frame (the speed filter's time constant) */
+    uint32_t averaged_substeps;  /* power-stage substeps per step of the averaged inverter */
+    double v_dc0_v;           /* [V] initial DC-link voltage */
+} drive_config;
+
+/* The battery's companion i = G v - b (battery.h convention), in SI. */
+typedef struct {
+    double g_s; /* [S] */
+    double b_a; /* [A] */
+} drive_battery;
+
+/* What the drive reports to the slow segment, once per slow frame. */
+typedef struct {
+    drive_battery battery;   /* the battery companion that was in force over the frame */
+    double v_dc_mean_v;      /* [V] mean DC-link voltage over the frame */
+    double v_dc_sq_mean_v2;  /* [V^2] mean of its square (battery current and power follow) */
+    double shaft_radps;      /* [rad/s] shaft speed, reduced as the coupling says */
+    double shaft_end_radps;  /* [rad/s] shaft speed at the boundary */
+    double te_nm;            /* [N m] mean electromagnetic torque */
+    double i_rms_a;          /* [A] rms phase current over the frame */
+    double v_dc_v;           /* [V] DC-link voltage at the boundary */
+    double m_index;          /* [-] modulation index in force */
+    double f_hz;             /* [Hz] stator frequency in force */
+    double e_mech_j;         /* [J] mechanical energy delivered to the shaft in the frame */
+    uint32_t saturations;    /* fixed-point saturation events so far (all drive models) */
+} drive_slow_meas;
+
+/* One row of the fast trace (SI units). */
+typedef struct {
+    uint8_t s[3];        /* leg states at the end of the step */
+    double m_index, f_hz;
+    double v_dc;         /* [V] */
+    double v_inv[3];     /* [V] inverter phase voltages (common mode removed) */
+    double v_cap[3];     /* [V] filter capacitor (motor terminal) voltages */
+    double i_motor[3];   /* [A] phase currents into the motor, as the fast step used them */
+    double i_dc;         /* [A] DC-link current into the inverter */
+    double n_rpm;        /* [rpm] shaft speed */
+    double te_nm;        /* [N m] electromagnetic torque */
+} drive_trace_row;
+
+typedef enum {
+    DRIVE_OK = 0,
+    DRIVE_ERR_CONFIG,   /* a rate, ratio or mode out of range */
+    DRIVE_ERR_MODEL     /* a model refused its parameters at these steps */
+} drive_status;
+
+#if UUV_NUMERIC == UUV_NUMERIC_FIXED
+
+/* Sums of one motor frame, from the fast steps (Q3.28 per unit summed). */
+typedef struct {
+    int64_t v_cap[2];  /* capacitor voltages a, b (c = -a - b) */
+    int64_t v_dc;      /* DC-link voltage */
+    int64_t v_dc_sq;   /* its square, Q3.28 * Q3.28 >> 28 */
+    uint32_t n;        /* fast steps summed */
+    q31_t i_mark[2];   /* the fast motor currents a, b at the boundary, Q31 of 256 A */
+} drive_frame_sums;
+
+typedef struct {
+    drive_config cfg;
+    /* Fast segment. */
+    pwm_q pwm;
+    power_stage_q ps;
+    inverter_avg_q avg;
+    pwm_q *mod;                 /* the modulator in use (pwm, or the averaged one's) */
+    power_stage_q *stage;       /* the power stage in use (ps, or the averaged one's) */
+    pwm_out_q pout;             /* the modulator's last step */
+    power_stage_in_q in;        /* duties, motor currents, battery: the fast inputs */
+    /* The motor's fast companion (see drive_segment.h): currents a, b, EMF. */
+    q31_t i_fast[2];            /* Q31 of 256 A */
+    int32_t e[2];               /* Q3.28 of 1024 V, the EMF in force */
+    int32_t e_step[2];          /* its change per fast step (FOH, DERIV) */
+    int32_t k_mant;             /* a_ss h1 * 32 (Q31 current step per Q3.28 volt) as */
+    uint32_t k_shift;           /* mantissa and right shift */
+    int32_t e_mant;             /* 1 / (k_l N) as mantissa ... */
+    uint32_t e_shift;           /* ... and shift: Q3.28 volts per Q31 current change */
+    int64_t filt[2];            /* filtered capacitor voltages (COUPLE_FILTER), Q3.28 << 16 */
+    uint32_t filt_k;            /* filter gain per fast step, Q16 */
+    drive_frame_sums sums;      /* the frame being summed */
+    /* Buffers between the fast step and the motor task. */
+    drive_frame_sums medium_in; /* published at the boundary, read by the motor task */
+    int32_t out_e[2];           /* EMF for the next frame, published by the task */
+    int32_t out_de[2];          /* its change per fast step */
+    q31_t out_corr[2];          /* motor current minus fast current at the frame end */
+    bool ctl_new;               /* a controller output waits in ctl_out */
+    drive_control_out_q ctl_out;
+    /* Fast-medium and slow-medium segments. */
+    induction_motor_q motor;
+    induction_motor_out_q mout;
+    q31_t i_prev[2];            /* motor currents at the frame start */
+    int32_t e_prev[2];          /* EMF of the previous frame (FOH) */
+    drive_control_params ctl_params; /* the controller's parameters at its frame */
+    drive_control_q ctl;
+    drive_control_in_q ctl_in;
+    drive_control_out_q ctl_last; /* the controller output in force (telemetry) */
+    q31_t speed_cmd;            /* Q31 of 512 rad/s */
+    /* Slow sums, kept by the motor task. */
+    int64_t slow_v_dc, slow_v_dc_sq, slow_w, slow_te, slow_i_sq;
+    int64_t slow_p_mech;        /* sum of te * w, Q31 * Q31 >> 31 (of 512 * 512 W) */
+    uint32_t slow_fast_n, slow_medium_n;
+    q31_t w_filt;               /* filtered shaft speed (COUPLE_FILTER) */
+    ps_battery_q battery_next;  /* battery companion waiting for the next slow boundary */
+    bool battery_new;
+    drive_battery bat_next, bat_in_force, bat_done; /* the same in SI: next, now, last frame */
+    uint32_t ps_clamps;         /* battery companion values clamped by the power stage */
+} drive_segment;
+
+#else /* UUV_NUMERIC_FLOAT */
+
+typedef struct {
+    float v_cap[2];   /* [V] capacitor voltages a, b summed over the frame */
+    float v_dc;       /* [V] summed */
+    float v_dc_sq;    /* [V^2] summed */
+    uint32_t n;
+    float i_mark[2];  /* [A] fast motor currents at the boundary */
+} drive_frame_sums;
+
+typedef struct {
+    drive_config cfg;
+    pwm_f32 pwm;
+    power_stage_f32 ps;
+    inverter_avg_f32 avg;
+    pwm_f32 *mod;
+    power_stage_f32 *stage;
+    pwm_out_f32 pout;
+    power_stage_in_f32 in;
+    float i_fast[2];            /* [A] */
+    float e[2];                 /* [V] */
+    float e_step[2];            /* [V per fast step] */
+    float k_l;                  /* [A/V per fast step] a_ss h1 */
+    float e_per_di;             /* [V/A] 1 / (a_ss h2) */
+    float filt[2];              /* [V] */
+    float filt_k;
+    drive_frame_sums sums;
+    drive_frame_sums medium_in;
+    float out_e[2], out_de[2], out_corr[2];
+    bool ctl_new;
+    drive_control_out_f32 ctl_out;
+    induction_motor_f32 motor;
+    induction_motor_out_f32 mout;
+    float i_prev[2];
+    float e_prev[2];
+    drive_control_params ctl_params;
+    drive_control_f32 ctl;
+    drive_control_in_f32 ctl_in;
+    drive_control_out_f32 ctl_last;
+    float speed_cmd;            /* [rad/s] */
+    /* Slow sums in double: one frame holds up to 50000 fast steps. */
+    double slow_v_dc, slow_v_dc_sq, slow_w, slow_te, slow_i_sq, slow_p_mech;
+    uint32_t slow_fast_n, slow_medium_n;
+    float w_filt;
+    ps_battery_f32 battery_next;
+    bool battery_new;
+    drive_battery bat_next, bat_in_force, bat_done;
+    uint32_t ps_clamps;
+} drive_segment;
+
+#endif
+
+/* Checks the configuration and initialises every model at its step. */
+drive_status drive_init(drive_segment *d, const drive_config *cfg, const propeller_model *prop);
+
+/* One fast step (the 2 us interrupt's work). */
+void drive_fast_tick(drive_segment *d);
+
+/*
+ * The motor-frame boundary, called from the fast tick, in two halves: the
+ * latch takes the outputs the motor task published (when it has finished),
+ * the publish hands the frame's sums to the next motor task. Without
+ * staggering both happen at the boundary, latch first; with staggering the
+ * latch comes half a frame after the publish.
+ */
+void drive_medium_latch(drive_segment *d);
+void drive_medium_publish(drive_segment *d, bool slow_boundary);
+
+/* The motor task: one motor step, the controller when control_due. */
+void drive_medium_task(drive_segment *d, bool control_due);
+
+/*
+ * Sets the battery companion and the speed command before the first tick.
+ */
+void drive_start(drive_segment *d, const drive_battery *battery);
+
+/* Sets the shaft speed command [rad/s]; the motor task calls it before a controller step. */
+void drive_speed_command(drive_segment *d, double speed_radps);
+
+/*
+ * The slow-frame exchange, called by the motor task released at a slow
+ * boundary: writes the measurements of the slow frame that just ended and
+ * takes the battery companion the slow segment computed, which the fast
+ * step applies from the next slow boundary on, so that one companion holds
+ * over each whole slow frame.
+ */
+void drive_slow_exchange(drive_segment *d, const drive_battery *next, drive_slow_meas *meas);
+
+/* The fast signals now, in SI units, for the trace. */
+void drive_trace(const drive_segment *d, drive_trace_row *row);
+
+/* Shaft speed now [rad/s] (for the slow segment's first frame). */
+double drive_shaft_radps(const drive_segment *d);
+
+#endif /* UUV_DRIVE_SEGMENT_H */

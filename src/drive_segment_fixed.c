@@ -1,0 +1,319 @@
+/*
+ * The drive segment of the fixed-point build (see drive_segment.h): every
+ * signal per unit of the bases in models/drive_units.h, integer arithmetic
+ * only in the fast tick and the motor task. The slow exchange, once per
+ * 100 ms, converts to SI in double.
+ */
+#include "drive_segment.h"
+
+#if UUV_NUMERIC == UUV_NUMERIC_FIXED
+
+#include "math/umath.h"
+#include "models/drive_units.h"
+
+#define Q31_ONE 2147483648.0
+#define Q28_ONE 268435456.0
+
+/* Switch states held per step (fixed-step switching) or edges located inside it. */
+static const pwm_params pwm_sampled = {5000.0, PWM_EDGES_SAMPLED, 0u, 0u};
+static const pwm_params pwm_located = {5000.0, PWM_EDGES_INTERPOLATED, 0u, 0u};
+
+/* round(sum * 2^shift / n) as Q31, saturating: a frame mean. */
+static q31_t mean_q31(int64_t sum, unsigned shift, uint32_t n, uint32_t *sat) {
+    int64_t scaled = sum * (int64_t)(1u << shift);
+    int64_t half = (int64_t)(n / 2u);
+    int64_t q = (scaled >= 0) ? (scaled + half) / (int64_t)n : -((-scaled + half) / (int64_t)n);
+    return fp_sat_cnt_q31(q, sat);
+}
+
+/* Splits a positive factor into an int32 mantissa below 2^30 and a right shift. */
+static void factor_split(double f, int32_t *mant, uint32_t *shift) {
+    uint32_t sh = 0u;
+    while (sh < 62u && f * (double)(1ull << (sh + 1u)) < 1073741824.0) {
+        sh++;
+    }
+    *mant = (int32_t)(f * (double)(1ull << sh) + 0.5);
+    *shift = sh;
+}
+
+drive_status drive_init(drive_segment *d, const drive_config *cfg, const propeller_model *prop) {
+    if (cfg->fast_ns < 100u || cfg->fast_per_medium == 0u || cfg->medium_per_control == 0u ||
+        cfg->fast_per_medium > 100000u || cfg->averaged_substeps == 0u ||
+        cfg->medium_per_slow == 0u) {
+        return DRIVE_ERR_CONFIG;
+    }
+    *d = (drive_segment){0};
+    d->cfg = *cfg;
+    double fast_s = 1e-9 * (double)cfg->fast_ns;
+    double medium_s = fast_s * (double)cfg->fast_per_medium;
+    uint32_t mod_ns = cfg->fast_ns;
+    if (cfg->inverter == DRIVE_INVERTER_AVERAGED) {
+        if (inverter_avg_init_q(&d->avg, &pwm_located, &power_stage_params_default, cfg->fast_ns,
+                                cfg->averaged_substeps, cfg->v_dc0_v) != INVERTER_AVG_OK) {
+            return DRIVE_ERR_MODEL;
+        }
+        d->mod = &d->avg.mod;
+        d->stage = &d->avg.stage;
+        mod_ns = cfg->fast_ns / cfg->averaged_substeps;
+    } else {
+        const pwm_params *pp =
+            (cfg->inverter == DRIVE_INVERTER_EVENT) ? &pwm_located : &pwm_sampled;
+        if (pwm_init_q(&d->pwm, pp, cfg->fast_ns) != PWM_OK ||
+            power_stage_init_q(&d->ps, &power_stage_params_default, cfg->fast_ns,
+                               cfg->v_dc0_v) != PS_OK) {
+            return DRIVE_ERR_MODEL;
+        }
+        d->mod = &d->pwm;
+        d->stage = &d->ps;
+    }
+    if (induction_motor_init_q(&d->motor, &induction_motor_params_15kw_delta, prop, medium_s) !=
+        INDUCTION_MOTOR_OK) {
+        return DRIVE_ERR_MODEL;
+    }
+    /* The fast companion: a_ss h1 in Q31 current per Q3.28 volt (x 2^31/2^28 x 1024/256). */
+    double k_l = d->motor.c.a_ss * fast_s * 32.0;
+    if (!(k_l > 1e-6 && k_l < 64.0)) {
+        return DRIVE_ERR_CONFIG;
+    }
+    factor_split(k_l, &d->k_mant, &d->k_shift);
+    factor_split(1.0 / (k_l * (double)cfg->fast_per_medium), &d->e_mant, &d->e_shift);
+    d->ctl_params = drive_control_params_default;
+    d->ctl_params.step_s = medium_s * (double)cfg->medium_per_control;
+    d->ctl_params.pwm_step_s = 1e-9 * (double)mod_ns;
+    if (drive_control_init_q(&d->ctl, &d->ctl_params) != DRIVE_CONTROL_OK) {
+        return DRIVE_ERR_MODEL;
+    }
+    /* First-order filter gain per fast step: step / frame, Q16. */
+    d->filt_k = (uint32_t)(65536u / cfg->fast_per_medium);
+    return DRIVE_OK;
+}
+
+void drive_fast_tick(drive_segment *d) {
+    power_stage_q *ps = d->stage;
+    if (d->cfg.inverter == DRIVE_INVERTER_AVERAGED) {
+        inverter_avg_step_q(&d->avg, &d->in);
+    } else {
+        pwm_step_q(&d->pwm, &d->pout);
+        d->in.duty[0] = d->pout.duty[0];
+        d->in.duty[1] = d->pout.duty[1];
+        d->in.duty[2] = d->pout.duty[2];
+        power_stage_step_q(ps, &d->in);
+    }
+    int32_t va = ps->ph[0].v_c;
+    int32_t vb = ps->ph[1].v_c;
+    /* The motor's fast companion: di = a_ss h (v - e), with the new capacitor voltages. */
+    d->e[0] += d->e_step[0];
+    d->e[1] += d->e_step[1];
+    d->i_fast[0] += (q31_t)fp_shr_floor_i64((int64_t)(va - d->e[0]) * d->k_mant, d->k_shift);
+    d->i_fast[1] += (q31_t)fp_shr_floor_i64((int64_t)(vb - d->e[1]) * d->k_mant, d->k_shift);
+    d->in.i_motor[0] = fp_narrow_q15(d->i_fast[0]);
+    d->in.i_motor[1] = fp_narrow_q15(d->i_fast[1]);
+    int32_t vdc = ps->v_dc;
+    d->sums.v_cap[0] += va;
+    d->sums.v_cap[1] += vb;
+    d->sums.v_dc += vdc;
+    d->sums.v_dc_sq += ((int64_t)vdc * (int64_t)vdc) >> 28;
+    d->sums.n++;
+    if (d->cfg.up == COUPLE_FILTER) {
+        d->filt[0] += ((int64_t)va * 65536 - d->filt[0]) * (int64_t)d->filt_k / 65536;
+        d->filt[1] += ((int64_t)vb * 65536 - d->filt[1]) * (int64_t)d->filt_k / 65536;
+    }
+}
+
+void drive_medium_latch(drive_segment *d) {
+    /* The EMF for this frame; extrapolated modes start 1.5 frames after the
+     * centre of the frame it was computed from, half a step early. */
+    int64_t ahead = 3 * (int64_t)d->cfg.fast_per_medium / 2 - 1;
+    for (int x = 0; x < 2; x++) {
+        d->i_fast[x] = fp_sat_q31((int64_t)d->i_fast[x] + d->out_corr[x]);
+        d->out_corr[x] = 0;
+        d->e_step[x] = d->out_de[x];
+        d->e[x] = (int32_t)fp_sat_q31((int64_t)d->out_e[x] + (int64_t)d->out_de[x] * ahead);
+    }
+    d->in.i_motor[0] = fp_narrow_q15(d->i_fast[0]);
+    d->in.i_motor[1] = fp_narrow_q15(d->i_fast[1]);
+    d->in.i_motor[2] = fp_sat_q15(-(int32_t)d->in.i_motor[0] - (int32_t)d->in.i_motor[1]);
+    if (d->ctl_new) {
+        pwm_command_inc_q(d->mod, d->ctl_out.m, d->ctl_out.phase_inc);
+        d->ctl_last = d->ctl_out;
+        d->ctl_new = false;
+    }
+}
+
+void drive_medium_publish(drive_segment *d, bool slow_boundary) {
+    if (slow_boundary) {
+        /* One battery companion holds over each whole slow frame. */
+        d->bat_done = d->bat_in_force;
+        if (d->battery_new) {
+            d->in.battery = d->battery_next;
+            d->bat_in_force = d->bat_next;
+            d->battery_new = false;
+        }
+    }
+    d->sums.i_mark[0] = d->i_fast[0];
+    d->sums.i_mark[1] = d->i_fast[1];
+    d->medium_in = d->sums;
+    if (d->cfg.up == COUPLE_SAMPLE) {
+        /* The boundary values, as if held over the frame. */
+        d->medium_in.v_cap[0] = (int64_t)d->stage->ph[0].v_c * d->sums.n;
+        d->medium_in.v_cap[1] = (int64_t)d->stage->ph[1].v_c * d->sums.n;
+    } else if (d->cfg.up == COUPLE_FILTER) {
+        d->medium_in.v_cap[0] = fp_shr_round_i64(d->filt[0], 16u) * d->sums.n;
+        d->medium_in.v_cap[1] = fp_shr_round_i64(d->filt[1], 16u) * d->sums.n;
+    }
+    d->sums = (drive_frame_sums){{0, 0}, 0, 0, 0u, {0, 0}};
+}
+
+/*
+ * The EMF of the frame just integrated and its change per fast step for
+ * the extrapolating modes (see drive_segment.h), Q3.28 of 1024 V.
+ */
+static void emf_update(drive_segment *d, const q31_t v_mean[2], const q31_t i_end[2]) {
+    int32_t e[2];
+    for (int x = 0; x < 2; x++) {
+        int64_t di = (int64_t)i_end[x] - d->i_prev[x];
+        int64_t drop = fp_shr_round_i64(di * d->e_mant, d->e_shift);
+        e[x] = (int32_t)fp_sat_q31(fp_shr_round_i64(v_mean[x], 3u) - drop);
+    }
+    int32_t de[2] = {0, 0};
+    if (d->cfg.down == COUPLE_FOH) {
+        for (int x = 0; x < 2; x++) {
+            de[x] = (int32_t)(((int64_t)e[x] - d->e_prev[x]) / (int64_t)d->cfg.fast_per_medium);
+        }
+    } else if (d->cfg.down == COUPLE_DERIV) {
+        /* de/dt = w_s (e_c - e_b) / sqrt 3 for phase a, (e_a - e_c) / sqrt 3 for b. */
+        double w_step = 6.283185307179586 * (double)d->ctl_last.freq / Q31_ONE *
+                        DRIVE_BASE_FREQ_HZ * 1e-9 * (double)d->cfg.fast_ns / 1.7320508075688772;
+        q31_t g = fp_from_f64_q31(w_step);
+        de[0] = (int32_t)fp_shr_round_i64(((int64_t)-e[0] - 2 * (int64_t)e[1]) * g, 31u);
+        de[1] = (int32_t)fp_shr_round_i64((2 * (int64_t)e[0] + (int64_t)e[1]) * g, 31u);
+    }
+    for (int x = 0; x < 2; x++) {
+        d->out_e[x] = e[x];
+        d->out_de[x] = de[x];
+        d->e_prev[x] = e[x];
+    }
+}
+
+void drive_medium_task(drive_segment *d, bool control_due) {
+    const drive_frame_sums *s = &d->medium_in;
+    uint32_t n = (s->n > 0u) ? s->n : 1u;
+    uint32_t sat = 0u;
+    /* Q3.28 sums to Q31 means: three bits up. */
+    induction_motor_in_q min;
+    min.v_a = mean_q31(s->v_cap[0], 3u, n, &sat);
+    min.v_b = mean_q31(s->v_cap[1], 3u, n, &sat);
+    min.v_c = fp_sat_q31(-(int64_t)min.v_a - (int64_t)min.v_b);
+    induction_motor_step_q(&d->motor, &min, &d->mout);
+    q31_t i_end[2] = {d->mout.i_a, d->mout.i_b};
+    q31_t v_mean[2] = {min.v_a, min.v_b};
+    emf_update(d, v_mean, i_end);
+    for (int x = 0; x < 2; x++) {
+        d->out_corr[x] = fp_sat_q31((int64_t)i_end[x] - s->i_mark[x]);
+        d->i_prev[x] = i_end[x];
+    }
+    /* Slow sums. */
+    d->slow_v_dc += s->v_dc;
+    d->slow_v_dc_sq += s->v_dc_sq;
+    d->slow_fast_n += s->n;
+    d->slow_w += d->mout.w;
+    d->slow_te += d->mout.te;
+    q15_t i15[3] = {fp_narrow_q15(i_end[0]), fp_narrow_q15(i_end[1]),
+                    fp_narrow_q15(d->mout.i_c)};
+    d->slow_i_sq += (int64_t)i15[0] * i15[0] + (int64_t)i15[1] * i15[1] +
+                    (int64_t)i15[2] * i15[2];
+    d->slow_p_mech += fp_shr_round_i64((int64_t)d->mout.te * (int64_t)d->mout.w, 31u);
+    d->slow_medium_n++;
+    if (d->cfg.up == COUPLE_FILTER) {
+        /* Time constant: the slow frame. */
+        d->w_filt += (q31_t)(((int64_t)d->mout.w - d->w_filt) / (int64_t)d->cfg.medium_per_slow);
+    }
+    if (control_due) {
+        d->ctl_in.speed_cmd = d->speed_cmd;
+        d->ctl_in.w = d->mout.w;
+        d->ctl_in.i_a = i_end[0];
+        d->ctl_in.i_b = i_end[1];
+        d->ctl_in.i_c = d->mout.i_c;
+        d->ctl_in.vdc = mean_q31(s->v_dc, 3u, n, &sat);
+        drive_control_step_q(&d->ctl, &d->ctl_in, &d->ctl_out);
+        d->ctl_new = true;
+    }
+    d->ps_clamps += sat;
+}
+
+void drive_slow_exchange(drive_segment *d, const drive_battery *next, drive_slow_meas *meas) {
+    meas->battery = d->bat_done;
+    double nf = (d->slow_fast_n > 0u) ? (double)d->slow_fast_n : 1.0;
+    double nm = (d->slow_medium_n > 0u) ? (double)d->slow_medium_n : 1.0;
+    double medium_s = 1e-9 * (double)d->cfg.fast_ns * (double)d->cfg.fast_per_medium;
+    meas->v_dc_mean_v = (double)d->slow_v_dc / nf / Q28_ONE * DRIVE_BASE_VOLTAGE_V;
+    meas->v_dc_sq_mean_v2 = (double)d->slow_v_dc_sq / nf / Q28_ONE * DRIVE_BASE_VOLTAGE_V *
+                            DRIVE_BASE_VOLTAGE_V;
+    double w_avg = (double)d->slow_w / nm / Q31_ONE * DRIVE_BASE_SPEED_RADPS;
+    double w_now = (double)d->mout.w / Q31_ONE * DRIVE_BASE_SPEED_RADPS;
+    double w_filt = (double)d->w_filt / Q31_ONE * DRIVE_BASE_SPEED_RADPS;
+    meas->shaft_radps = (d->cfg.up == COUPLE_AVG)      ? w_avg
+                        : (d->cfg.up == COUPLE_FILTER) ? w_filt
+                                                       : w_now;
+    meas->shaft_end_radps = w_now;
+    meas->te_nm = (double)d->slow_te / nm / Q31_ONE * DRIVE_BASE_TORQUE_NM;
+    double i_sq = (double)d->slow_i_sq / nm / 3.0 / (32768.0 * 32768.0);
+    meas->i_rms_a = math_sqrt_f64(i_sq) * DRIVE_BASE_CURRENT_A;
+    meas->v_dc_v = (double)d->stage->v_dc / Q28_ONE * DRIVE_BASE_VOLTAGE_V;
+    meas->m_index = (double)d->ctl_last.m / 32768.0;
+    meas->f_hz = (double)d->ctl_last.freq / Q31_ONE * DRIVE_BASE_FREQ_HZ;
+    meas->e_mech_j = (double)d->slow_p_mech / Q31_ONE * DRIVE_BASE_TORQUE_NM *
+                     DRIVE_BASE_SPEED_RADPS * medium_s;
+    meas->saturations = d->pwm.sat_count + d->stage->sat_count + d->avg.mod.sat_count +
+                        d->motor.sat_count + d->ctl.sat_count + d->ps_clamps;
+    d->slow_v_dc = d->slow_v_dc_sq = d->slow_w = d->slow_te = d->slow_i_sq = 0;
+    d->slow_p_mech = 0;
+    d->slow_fast_n = d->slow_medium_n = 0u;
+
+    d->bat_next = *next;
+    d->ps_clamps += power_stage_battery_q(d->stage, next->g_s, next->b_a, &d->battery_next);
+    d->battery_new = true;
+}
+
+void drive_start(drive_segment *d, const drive_battery *battery) {
+    d->bat_next = d->bat_in_force = d->bat_done = *battery;
+    d->ps_clamps +=
+        power_stage_battery_q(d->stage, battery->g_s, battery->b_a, &d->in.battery);
+    d->battery_next = d->in.battery;
+}
+
+void drive_speed_command(drive_segment *d, double speed_radps) {
+    d->speed_cmd = fp_from_f64_q31(speed_radps / DRIVE_BASE_SPEED_RADPS);
+}
+
+void drive_trace(const drive_segment *d, drive_trace_row *row) {
+    const power_stage_q *ps = d->stage;
+    const double v = DRIVE_BASE_VOLTAGE_V / Q28_ONE;
+    for (int x = 0; x < 3; x++) {
+        row->s[x] = d->pout.state[x];
+    }
+    row->m_index = (double)d->ctl_last.m / 32768.0;
+    row->f_hz = (double)d->ctl_last.freq / Q31_ONE * DRIVE_BASE_FREQ_HZ;
+    row->v_dc = (double)ps->v_dc * v;
+    row->v_inv[0] = (double)ps->u[0] * v;
+    row->v_inv[1] = (double)ps->u[1] * v;
+    row->v_inv[2] = -row->v_inv[0] - row->v_inv[1];
+    row->v_cap[0] = (double)ps->ph[0].v_c * v;
+    row->v_cap[1] = (double)ps->ph[1].v_c * v;
+    row->v_cap[2] = -row->v_cap[0] - row->v_cap[1];
+    for (int x = 0; x < 3; x++) {
+        row->i_motor[x] = (double)d->in.i_motor[x] / 32768.0 * DRIVE_BASE_CURRENT_A;
+    }
+    row->i_dc = (double)ps->i_dc / Q28_ONE * DRIVE_BASE_CURRENT_A;
+    row->n_rpm = (double)d->mout.n_rpm_q16 / 65536.0;
+    row->te_nm = (double)d->mout.te / Q31_ONE * DRIVE_BASE_TORQUE_NM;
+}
+
+double drive_shaft_radps(const drive_segment *d) {
+    return (double)d->motor.w / Q31_ONE * DRIVE_BASE_SPEED_RADPS;
+}
+
+#else
+/* The float build uses drive_segment_float.c; ISO C wants a declaration here. */
+typedef int drive_segment_fixed_unused;
+#endif

@@ -1,0 +1,409 @@
+/*
+ * The multi-rate executive (see executive.h).
+ */
+#include "executive.h"
+
+#include "math/umath.h"
+
+#define RPM_TO_RADPS (3.14159265358979323846 / 30.0)
+
+const char *const exec_command_names[EXEC_NCMD] = {
+    "delta_r_cmd_rad", "delta_s_cmd_rad", "delta_bp_cmd_rad", "delta_bs_cmd_rad", "n_cmd_rpm",
+};
+
+void exec_config_default(exec_config *cfg) {
+    *cfg = (exec_config){0};
+    cfg->plant = EXEC_PLANT_FULL;
+    cfg->propulsion = VESSEL_PROP_PAPER;
+    cfg->inverter = DRIVE_INVERTER_SWITCHING;
+    cfg->down = COUPLE_ZOH;
+    cfg->up = COUPLE_AVG;
+    cfg->soc0 = 1.0;
+    cfg->fast_ns = 2000u;
+    cfg->fast_per_medium = 50u;
+    cfg->medium_per_control = 8u;
+    cfg->medium_per_slow = 1000u;
+}
+
+/* ---- Scenario player (background) ---------------------------------------- */
+
+static void apply_event(vessel_cmd *c, const scenario_event *ev) {
+    switch ((scenario_command)ev->command) {
+    case SCN_RUDDER: c->rudder_rad = ev->value; break;
+    case SCN_STERN: c->stern_rad = ev->value; break;
+    case SCN_BOW_PORT: c->bow_port_rad = ev->value; break;
+    case SCN_BOW_STBD: c->bow_stbd_rad = ev->value; break;
+    case SCN_N_RPM: c->n_rpm = ev->value; break;
+    case SCN_BUOYANCY: c->delta_b_n = ev->value; break;
+    case SCN_COMMAND_COUNT: break;
+    }
+}
+
+/* The zig-zag rule, decided at the start of each slow step from the heading. */
+static void zigzag_rule(exec *e, double t) {
+    const scenario_zigzag *z = &e->scn->zigzag;
+    bool active = z->enabled && t >= z->start_s - 1e-9 && (z->stop_s < 0.0 || t < z->stop_s);
+    if (!active) {
+        if (e->zz_rudder != 0.0) {
+            e->cmd.rudder_rad = 0.0; /* the zig-zag ended: rudder amidships */
+            e->zz_rudder = 0.0;
+        }
+        return;
+    }
+    double psi = e->x[VESSEL_PSI_RAD];
+    if (e->zz_rudder == 0.0) {
+        e->zz_psi0 = psi;
+        e->zz_rudder = z->rudder_rad;
+    } else if (e->zz_rudder > 0.0 && psi - e->zz_psi0 <= -z->heading_rad) {
+        e->zz_rudder = -z->rudder_rad;
+    } else if (e->zz_rudder < 0.0 && psi - e->zz_psi0 >= z->heading_rad) {
+        e->zz_rudder = z->rudder_rad;
+    }
+    e->cmd.rudder_rad = e->zz_rudder;
+}
+
+/* Applies the commands due at the slow boundary t: events at or before t. */
+static void apply_commands(exec *e, double t) {
+    double due = t + 1e-9 * e->slow_s;
+    while (e->next_event < e->scn->n_events && e->scn->events[e->next_event].t_s <= due) {
+        apply_event(&e->cmd, &e->scn->events[e->next_event]);
+        e->next_event++;
+    }
+    zigzag_rule(e, t);
+}
+
+/*
+ * The shaft speed command in force at time t, for the medium task: it keeps
+ * its own cursor in the (read-only) scenario, so the command reaches the
+ * controller at the controller's rate, not a slow frame late.
+ */
+static double speed_command_at(exec *e, double t) {
+    double due = t + 1e-12;
+    while (e->speed_cursor < e->scn->n_events && e->scn->events[e->speed_cursor].t_s <= due) {
+        const scenario_event *ev = &e->scn->events[e->speed_cursor];
+        if (ev->command == SCN_N_RPM) {
+            e->speed_rpm = ev->value;
+        }
+        e->speed_cursor++;
+    }
+    return e->speed_rpm;
+}
+
+/* ---- Initialisation ------------------------------------------------------ */
+
+static exec_status init_frames(exec *e, const exec_config *cfg, double duration) {
+    exec_config *c = &e->cfg;
+    if (cfg->fast_ns < 100u || cfg->fast_per_medium == 0u || cfg->medium_per_control == 0u ||
+        cfg->medium_per_slow == 0u || cfg->medium_per_slow % cfg->medium_per_control != 0u) {
+        return EXEC_ERR_CONFIG;
+    }
+    e->slow_per_report = 1u;
+    if (cfg->single_rate) {
+        /* Every integrating segment at the fast frame; records still every 100 ms. */
+        c->fast_per_medium = 1u;
+        c->medium_per_control = cfg->fast_per_medium * cfg->medium_per_control;
+        c->medium_per_slow = 1u;
+        e->slow_per_report = cfg->fast_per_medium * cfg->medium_per_slow;
+    } else if (cfg->inverter == DRIVE_INVERTER_AVERAGED) {
+        /* The averaged inverter runs at the motor's frame. */
+        c->fast_ns = cfg->fast_ns * cfg->fast_per_medium;
+        c->fast_per_medium = 1u;
+    }
+    double slow_ns = (double)c->fast_ns * (double)c->fast_per_medium * (double)c->medium_per_slow;
+    e->slow_s = 1e-9 * slow_ns;
+    double report_s = 1e-9 * (slow_ns * (double)e->slow_per_report);
+    e->report_s = report_s;
+    if (!(e->slow_s <= 10.0) || !(duration > 0.0) || duration / report_s > 4.0e9 ||
+        (cfg->plant == EXEC_PLANT_VESSEL && !(e->slow_s >= 1e-3))) {
+        return EXEC_ERR_CONFIG;
+    }
+    /* Whole reporting periods; a duration in between rounds to the nearest. */
+    uint64_t reports = (uint64_t)(duration / report_s + 0.5);
+    if (reports == 0u || reports * e->slow_per_report > 0xFFFFFFFFu) {
+        return EXEC_ERR_CONFIG;
+    }
+    e->frames = (uint32_t)(reports * e->slow_per_report);
+    return EXEC_OK;
+}
+
+static exec_status init_drive(exec *e) {
+    const exec_config *c = &e->cfg;
+    e->bat_params = battery_params_uuv;
+    e->bat_params.frame_s = e->slow_s;
+    if (battery_init(&e->bat, &e->bat_params, c->soc0) != BATTERY_OK) {
+        return EXEC_ERR_MODEL;
+    }
+    battery_companion bc = battery_companion_f64(&e->bat);
+    drive_battery b0 = {bc.g_s, bc.b_a};
+    drive_config dc;
+    dc.inverter = c->inverter;
+    dc.down = c->down;
+    dc.up = c->up;
+    dc.fast_ns = c->fast_ns;
+    dc.fast_per_medium = c->fast_per_medium;
+    dc.medium_per_control = c->medium_per_control;
+    dc.medium_per_slow = c->medium_per_slow;
+    dc.averaged_substeps = (c->fast_ns >= 8000u) ? 4u : 1u;
+    dc.v_dc0_v = battery_voltage_f64(&e->bat, 0.0);
+    if (drive_init(&e->drive, &dc, &e->prop) != DRIVE_OK) {
+        return EXEC_ERR_MODEL;
+    }
+    drive_start(&e->drive, &b0);
+    e->bat_next = b0;
+    (void)speed_command_at(e, 0.0);
+    drive_speed_command(&e->drive, e->speed_rpm * RPM_TO_RADPS);
+    return EXEC_OK;
+}
+
+static void make_report(exec *e);
+
+exec_status exec_init(exec *e, const exec_config *cfg, const scenario *scn) {
+    *e = (exec){0};
+    e->cfg = *cfg;
+    e->scn = scn;
+    double duration = (cfg->duration_s > 0.0) ? cfg->duration_s : scn->duration_s;
+    if (!(cfg->soc0 > 0.0 && cfg->soc0 <= 1.0) || cfg->plant > EXEC_PLANT_FULL) {
+        return EXEC_ERR_CONFIG;
+    }
+    exec_status st = init_frames(e, cfg, duration);
+    if (st != EXEC_OK) {
+        return st;
+    }
+    if (propeller_init(&e->prop, &propeller_params_default) != PROPELLER_OK) {
+        return EXEC_ERR_MODEL;
+    }
+    vessel_config vc;
+    vessel_config_default(&vc);
+    vc.propulsion = cfg->propulsion;
+    vc.shaft = (cfg->plant == EXEC_PLANT_FULL) ? VESSEL_SHAFT_INPUT : VESSEL_SHAFT_LAG;
+    vc.step_s = e->slow_s;
+    if (vessel_init(&e->vessel, &vc) != VESSEL_OK) {
+        return EXEC_ERR_MODEL;
+    }
+    for (int i = 0; i < VESSEL_NSTATES; i++) {
+        e->x[i] = scn->init[i];
+    }
+    manoeuvre_init(&e->man, scn->zigzag.enabled, scn->zigzag.heading_rad, scn->zigzag.start_s);
+    apply_commands(e, 0.0);
+    if (cfg->plant == EXEC_PLANT_FULL) {
+        /* The shaft starts at rest with the motor; the state says so. */
+        e->x[VESSEL_N_RPM] = 0.0;
+        st = init_drive(e);
+        if (st != EXEC_OK) {
+            return st;
+        }
+    }
+    make_report(e);
+    return EXEC_OK;
+}
+
+/* ---- Fast and medium rates ----------------------------------------------- */
+
+/* A slower task still running when its results are due ends the run. */
+static void overrun(exec *e, uint32_t *counter) {
+    (*counter)++;
+    e->state = EXEC_STOP_OVERRUN;
+}
+
+bool exec_fast_tick(exec *e) {
+    if (e->state != EXEC_RUNNING) {
+        return false;
+    }
+    drive_fast_tick(&e->drive);
+    e->count.fast++;
+    uint32_t phase = ++e->fast_phase;
+    uint32_t n = e->cfg.fast_per_medium;
+    if (e->cfg.down == COUPLE_STAGGER && n >= 2u && phase == n / 2u) {
+        /* Staggered: the motor task's results arrive half a frame after its release. */
+        if (e->medium_busy) {
+            overrun(e, &e->count.overruns_medium);
+            return false;
+        }
+        drive_medium_latch(&e->drive);
+    }
+    if (phase < n) {
+        return false;
+    }
+    e->fast_phase = 0u;
+    if (e->medium_busy) {
+        overrun(e, &e->count.overruns_medium);
+        return false;
+    }
+    bool control = (++e->medium_phase == e->cfg.medium_per_control);
+    if (control) {
+        e->medium_phase = 0u;
+    }
+    bool slow = (++e->slow_phase == e->cfg.medium_per_slow);
+    if (slow) {
+        e->slow_phase = 0u;
+    }
+    /* Latch before publish: the publish marks the fast currents the next
+     * motor task compares with its own, corrections included. */
+    if (e->cfg.down != COUPLE_STAGGER || n < 2u) {
+        drive_medium_latch(&e->drive);
+    }
+    drive_medium_publish(&e->drive, slow);
+    e->rel_control = control;
+    e->rel_slow = slow;
+    e->rel_time_ns = e->count.fast * (uint64_t)e->cfg.fast_ns;
+    e->medium_busy = true;
+    return true;
+}
+
+void exec_medium_tick(exec *e) {
+    if (!e->medium_busy) {
+        return;
+    }
+    if (e->rel_control) {
+        double t = 1e-9 * (double)e->rel_time_ns;
+        drive_speed_command(&e->drive, speed_command_at(e, t) * RPM_TO_RADPS);
+        e->count.control++;
+    }
+    drive_medium_task(&e->drive, e->rel_control);
+    if (e->rel_slow) {
+        if (e->slow_pending) {
+            overrun(e, &e->count.overruns_slow);
+        } else {
+            drive_slow_exchange(&e->drive, &e->bat_next, &e->meas);
+            e->slow_pending = true;
+        }
+    }
+    e->count.medium++;
+    e->medium_busy = false;
+}
+
+/* ---- Slow rate ----------------------------------------------------------- */
+
+bool exec_slow_pending(const exec *e) { return e->slow_pending; }
+
+/* The battery's frame from the bus voltage the drive measured (i = G v - b). */
+static void battery_frame(exec *e) {
+    const drive_slow_meas *m = &e->meas;
+    double g = m->battery.g_s;
+    double b = m->battery.b_a;
+    double v = m->v_dc_mean_v;
+    double v2 = m->v_dc_sq_mean_v2;
+    battery_frame_meas bm;
+    bm.i_avg_a = g * v - b;
+    bm.i_sq_avg_a2 = g * g * v2 - 2.0 * g * b * v + b * b;
+    if (bm.i_sq_avg_a2 < bm.i_avg_a * bm.i_avg_a) {
+        bm.i_sq_avg_a2 = bm.i_avg_a * bm.i_avg_a; /* rounding of a near-constant current */
+    }
+    bm.p_avg_w = g * v2 - b * v;
+    battery_step_f64(&e->bat, &bm);
+    e->count.e_batt_j -= bm.p_avg_w * e->slow_s;
+    e->count.e_mech_j += m->e_mech_j;
+    e->count.saturations = m->saturations;
+    e->acc_i_batt -= bm.i_avg_a;
+    e->acc_te += m->te_nm;
+    e->acc_i_sq += m->i_rms_a * m->i_rms_a;
+    e->acc_v_dc += m->v_dc_mean_v;
+    e->acc_m += m->m_index;
+    e->acc_f += m->f_hz;
+    e->acc_n++;
+    battery_companion bc = battery_companion_f64(&e->bat);
+    e->bat_next.g_s = bc.g_s;
+    e->bat_next.b_a = bc.b_a;
+}
+
+static void make_report(exec *e) {
+    exec_frame *r = &e->report;
+    r->index = e->frame / e->slow_per_report;
+    /* The same times in every mode: whole reporting periods. */
+    r->t_s = (double)r->index * e->report_s;
+    for (int i = 0; i < VESSEL_NSTATES; i++) {
+        r->x[i] = e->x[i];
+    }
+    if (e->cfg.plant == EXEC_PLANT_FULL && e->frame > 0u) {
+        /* The vessel integrated the frame with the mean shaft speed; the
+         * record gives the speed at the boundary, like every other state. */
+        r->x[VESSEL_N_RPM] = e->meas.shaft_end_radps / RPM_TO_RADPS;
+    }
+    r->cmd[0] = e->cmd.rudder_rad;
+    r->cmd[1] = e->cmd.stern_rad;
+    r->cmd[2] = e->cmd.bow_port_rad;
+    r->cmd[3] = e->cmd.bow_stbd_rad;
+    r->cmd[4] = (e->cfg.plant == EXEC_PLANT_FULL) ? e->speed_rpm : e->cmd.n_rpm;
+    if (e->cfg.plant == EXEC_PLANT_FULL) {
+        double n = (e->acc_n > 0u) ? (double)e->acc_n : 1.0;
+        r->te_nm = e->acc_te / n;
+        r->i_rms_a = math_sqrt_f64(e->acc_i_sq / n);
+        r->v_dc_v = (e->acc_n > 0u) ? e->acc_v_dc / n : battery_voltage_f64(&e->bat, 0.0);
+        r->i_batt_a = e->acc_i_batt / n;
+        r->soc = e->bat.soc;
+        r->m_index = e->acc_m / n;
+        r->f_hz = e->acc_f / n;
+    }
+    e->acc_te = e->acc_i_sq = e->acc_v_dc = e->acc_i_batt = e->acc_m = e->acc_f = 0.0;
+    e->acc_n = 0u;
+    e->report_ready = true;
+}
+
+void exec_slow_step(exec *e) {
+    if (e->state != EXEC_RUNNING) {
+        return;
+    }
+    if (e->cfg.plant == EXEC_PLANT_FULL) {
+        battery_frame(e);
+        /* The shaft speed over the frame just measured: its start, and the
+         * rate that brings it to the reduced value (mean, filtered or
+         * sampled) at the frame's middle, a first-order hold. */
+        double start = e->shaft_start_rpm;
+        double reduced = e->meas.shaft_radps / RPM_TO_RADPS;
+        e->cmd.shaft_rpm = start;
+        e->cmd.shaft_rate_rpmps = 2.0 * (reduced - start) / e->slow_s;
+        e->shaft_start_rpm = e->meas.shaft_end_radps / RPM_TO_RADPS;
+    }
+    const double *x = e->x;
+    double t = (double)e->frame * e->slow_s;
+    if (e->frame % e->slow_per_report == 0u) {
+        double speed2 = x[VESSEL_U_MPS] * x[VESSEL_U_MPS] + x[VESSEL_V_MPS] * x[VESSEL_V_MPS] +
+                        x[VESSEL_W_MPS] * x[VESSEL_W_MPS];
+        manoeuvre_update(&e->man, t, x[VESSEL_X_M], x[VESSEL_Y_M], x[VESSEL_PSI_RAD],
+                         math_sqrt_f64(speed2), x[VESSEL_R_RADPS], e->cmd.rudder_rad);
+    }
+    (void)vessel_step(&e->vessel, e->x, &e->cmd);
+    e->frame++;
+    e->count.slow++;
+    t = (double)e->frame * e->slow_s;
+    if (e->frame % e->slow_per_report == 0u) {
+        /* Scenario commands and the zig-zag rule act on the reporting grid. */
+        apply_commands(e, t);
+        make_report(e);
+    }
+    if (e->frame >= e->frames) {
+        e->state = EXEC_DONE;
+    }
+    e->slow_pending = false;
+}
+
+void exec_desk_step(exec *e) {
+    if (e->cfg.plant == EXEC_PLANT_VESSEL) {
+        exec_slow_step(e);
+        return;
+    }
+    if (exec_fast_tick(e)) {
+        exec_medium_tick(e);
+    }
+    if (e->slow_pending) {
+        exec_slow_step(e);
+    }
+}
+
+bool exec_report_take(exec *e, exec_frame *out) {
+    if (!e->report_ready) {
+        return false;
+    }
+    *out = e->report;
+    e->report_ready = false;
+    return true;
+}
+
+double exec_time_s(const exec *e) {
+    if (e->cfg.plant == EXEC_PLANT_VESSEL) {
+        return (double)e->frame * e->slow_s;
+    }
+    return 1e-9 * (double)e->count.fast * (double)e->cfg.fast_ns;
+}
+
+const manoeuvre_result *exec_manoeuvre(const exec *e) { return &e->man.r; }

@@ -1,0 +1,180 @@
+/*
+ * The multi-rate executive: owns every model instance and runs them at
+ * their frames from a scenario (paper section 4; docs/multirate.md).
+ *
+ *   fast    2 us    PWM, inverter, DC link, LC filter        exec_fast_tick()
+ *   medium  100 us  induction motor (+ the 800 us controller) exec_medium_tick()
+ *   slow    100 ms  battery, vessel, scenario, telemetry     exec_slow_step()
+ *
+ * The frames are parameters (integer ratios checked at init). A port calls
+ * exec_fast_tick() every fast step, from a loop (Linux) or from the highest
+ * priority timer interrupt (Cortex-M). It returns true when it has released
+ * the medium task, which the port then runs (at once on Linux; as a pended,
+ * lower-priority interrupt on Cortex-M). When exec_slow_pending() is true
+ * the background runs exec_slow_step().
+ *
+ * Determinism. Every datum that crosses between rates waits in a buffer of
+ * the drive segment or of this executive: the fast tick latches the medium
+ * task's outputs at a motor-frame boundary (or half a frame later when the
+ * coupling is staggered), the medium task reads only what the fast tick
+ * published at its release, and the slow segment's battery companion takes
+ * effect at a slow boundary. A slower task that is still running when its
+ * results are due is an overrun: it is counted and ends the run (the
+ * results would otherwise depend on timing), never silently. On the desk,
+ * where the tasks run in sequence, there are none.
+ *
+ * In single-rate mode every segment that integrates runs at the fast frame
+ * (the paper's baseline): the same code with the motor and slow ratios 1,
+ * and telemetry still every 100 ms. The controller keeps its 800 us sample
+ * period: it is a digital controller, whose sample rate belongs to the
+ * drive's design, not an integration step of the simulation.
+ */
+#ifndef UUV_EXECUTIVE_H
+#define UUV_EXECUTIVE_H
+
+#include <stdbool.h>
+#include <stdint.h>
+
+#include "drive_segment.h"
+#include "manoeuvre.h"
+#include "models/battery.h"
+#include "models/propeller.h"
+#include "models/vessel.h"
+#include "scenario.h"
+
+typedef enum {
+    EXEC_PLANT_VESSEL = 0, /* vessel alone, shaft speed commanded through its lag */
+    EXEC_PLANT_FULL        /* battery, drive and vessel */
+} exec_plant;
+
+#define EXEC_NCMD 5 /* rudder, stern, bow_port, bow_stbd [rad], n [rpm] */
+
+typedef struct {
+    exec_plant plant;
+    vessel_propulsion propulsion;
+    drive_inverter inverter;
+    coupling_down down;
+    coupling_up up;
+    bool single_rate;
+    double duration_s;     /* [s]; 0: the scenario's */
+    double soc0;           /* [-] initial state of charge */
+    uint32_t fast_ns;      /* [ns] fast frame (2000) */
+    uint32_t fast_per_medium;    /* 50 */
+    uint32_t medium_per_control; /* 8 */
+    uint32_t medium_per_slow;    /* 1000 */
+} exec_config;
+
+/* One telemetry record: the state at a reported slow boundary. */
+typedef struct {
+    uint32_t index;            /* reported frame number */
+    double t_s;                /* [s] */
+    double x[VESSEL_NSTATES];  /* vessel state (x[VESSEL_N_RPM]: the shaft speed) */
+    double cmd[EXEC_NCMD];     /* commands held over the next step */
+    /* Full plant, means over the reporting period (zero in vessel-only runs). */
+    double te_nm;              /* [N m] electromagnetic torque */
+    double i_rms_a;            /* [A] rms phase current */
+    double v_dc_v;             /* [V] DC-link voltage */
+    double i_batt_a;           /* [A] battery current, positive when discharging */
+    double soc;                /* [-] state of charge */
+    double m_index;            /* [-] modulation index */
+    double f_hz;               /* [Hz] stator frequency */
+} exec_frame;
+
+typedef enum {
+    EXEC_OK = 0,
+    EXEC_ERR_CONFIG, /* a rate, ratio, duration or option out of range */
+    EXEC_ERR_MODEL   /* a model refused its parameters */
+} exec_status;
+
+/* Why a run ended early. */
+typedef enum {
+    EXEC_RUNNING = 0,
+    EXEC_DONE,              /* the scenario's duration was reached */
+    EXEC_STOP_OVERRUN       /* a task missed its deadline */
+} exec_state;
+
+typedef struct {
+    double e_batt_j;      /* [J] energy delivered by the battery at its terminals */
+    double e_mech_j;      /* [J] mechanical energy delivered to the shaft */
+    uint64_t fast, medium, control, slow; /* steps run */
+    uint32_t overruns_medium, overruns_slow;
+    uint32_t saturations; /* fixed-point saturation events (fast models) */
+} exec_counters;
+
+typedef struct {
+    exec_config cfg;
+    const scenario *scn;
+    exec_state state;
+    /* Frames. */
+    uint32_t slow_per_report; /* slow frames per telemetry record */
+    double slow_s;            /* [s] slow frame */
+    double report_s;          /* [s] reporting period */
+    uint32_t frames;          /* slow frames in the run */
+    /* Slow segment. */
+    propeller_model prop;
+    vessel_model vessel;
+    double x[VESSEL_NSTATES];
+    vessel_cmd cmd;
+    battery_params bat_params;
+    battery bat;
+    uint32_t frame;           /* slow frames done */
+    size_t next_event;
+    double zz_rudder, zz_psi0;
+    manoeuvre man;
+    /* Drive (full plant). */
+    drive_segment drive;
+    size_t speed_cursor;      /* the medium task's place in the scenario */
+    double speed_rpm;         /* its shaft speed command in force */
+    double shaft_start_rpm;   /* [rpm] shaft speed at the start of the slow frame */
+    /* Schedule. */
+    uint32_t fast_phase;      /* fast steps since the last motor-frame boundary */
+    uint32_t medium_phase;    /* motor frames since the last controller frame */
+    uint32_t slow_phase;      /* motor frames since the last slow boundary */
+    volatile bool medium_busy;
+    volatile bool slow_pending;
+    bool rel_control, rel_slow; /* what the released medium task is due to do */
+    uint64_t rel_time_ns;       /* time of its release */
+    drive_slow_meas meas;       /* the slow frame's measurements (medium task -> slow) */
+    drive_battery bat_next;     /* the next companion (slow -> medium task) */
+    /* Report accumulation over the reporting period. */
+    double acc_te, acc_i_sq, acc_v_dc, acc_i_batt, acc_m, acc_f;
+    uint32_t acc_n;
+    exec_frame report;
+    bool report_ready;
+    exec_counters count;
+} exec;
+
+extern const char *const exec_command_names[EXEC_NCMD];
+
+/* Default: full plant, paper propulsion, switching inverter, ZOH/average, 2 us/100 us/800 us/100 ms. */
+void exec_config_default(exec_config *cfg);
+
+/* Checks the configuration against the scenario and initialises every model. */
+exec_status exec_init(exec *e, const exec_config *cfg, const scenario *scn);
+
+/* The fast tick; true when it released the medium task. */
+bool exec_fast_tick(exec *e);
+
+/* The medium task. */
+void exec_medium_tick(exec *e);
+
+/* The background's slow step, when exec_slow_pending(). */
+bool exec_slow_pending(const exec *e);
+void exec_slow_step(exec *e);
+
+/*
+ * The desk loop's unit of work: one fast tick and whatever it released, in
+ * the order a target's interrupts run them when none overruns. In
+ * vessel-only runs, one slow step.
+ */
+void exec_desk_step(exec *e);
+
+/* Takes the telemetry record made by the last slow step, if any. */
+bool exec_report_take(exec *e, exec_frame *out);
+
+/* Simulated time now [s]. */
+double exec_time_s(const exec *e);
+
+const manoeuvre_result *exec_manoeuvre(const exec *e);
+
+#endif /* UUV_EXECUTIVE_H */
