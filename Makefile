@@ -62,6 +62,7 @@ $(1)_CFLAGS := $(COMMON) $(4) -DUUV_NUMERIC=$(NUM_$(3)) -D_POSIX_C_SOURCE=200809
 $(1)_SRC_O := $$(patsubst %.c,$$($(1)_DIR)/obj/%.o,$(SRC_C) $(LINUX_PORT_C))
 $(1)_TEST_O := $$(patsubst %.c,$$($(1)_DIR)/obj/%.o,$(TEST_C))
 $(1)_UUVSIM_O := $$(patsubst %.c,$$($(1)_DIR)/obj/%.o,$(UUVSIM_C))
+$(1)_BENCH_O := $$($(1)_DIR)/obj/ports/linux/bench.o
 $(1)_FAIL_O := $$(filter-out %/test_harness.o,$$($(1)_TEST_O)) $$($(1)_DIR)/obj-mustfail/test_harness.o
 
 # src/ is compiled freestanding on the host too, which proves it needs no libc.
@@ -84,6 +85,9 @@ $$($(1)_DIR)/unit_tests_mustfail: $$($(1)_SRC_O) $$($(1)_FAIL_O)
 	$(2) $(5) -o $$@ $$^ -lm
 
 $$($(1)_DIR)/uuvsim: $$($(1)_SRC_O) $$($(1)_UUVSIM_O)
+	$(2) $(5) -o $$@ $$^ -lm
+
+$$($(1)_DIR)/bench: $$($(1)_SRC_O) $$($(1)_BENCH_O)
 	$(2) $(5) -o $$@ $$^ -lm
 
 -include $$(wildcard $$($(1)_DIR)/obj/*/*.d $$($(1)_DIR)/obj/*/*/*.d $$($(1)_DIR)/obj/*/*/*/*.d)
@@ -174,7 +178,7 @@ HOST_TOOLS := $(BUILD)/tools/check_tables $(BUILD)/tools/gen_wavetables \
 
 # ---- Top-level targets ----------------------------------------------------
 
-.PHONY: all firmware host-all tools test test-run check-tables run clean deps
+.PHONY: all firmware host-all tools test test-run check-tables run bench clean deps
 
 all: $(foreach v,linux-fixed linux-float,$(BUILD)/$(v)/unit_tests $(BUILD)/$(v)/uuvsim)
 
@@ -216,6 +220,14 @@ run: $(BUILD)/linux-float/uuvsim
 	else \
 	    echo "gnuplot is missing: install it (apt-get install gnuplot-nox) for the plots"; \
 	fi
+
+# The accuracy/speed-up study of both builds, in build/bench.json.
+bench: $(BUILD)/linux-fixed/bench $(BUILD)/linux-float/bench
+	@$(BUILD)/linux-fixed/bench scenarios/bench_2s.scn > $(BUILD)/bench-fixed.json
+	@$(BUILD)/linux-float/bench scenarios/bench_2s.scn > $(BUILD)/bench-float.json
+	@printf '{"fixed": %s, "float": %s}\n' "$$(cat $(BUILD)/bench-fixed.json)" \
+	    "$$(cat $(BUILD)/bench-float.json)" > $(BUILD)/bench.json
+	@echo "written $(BUILD)/bench.json"
 
 clean:
 	rm -rf $(BUILD)

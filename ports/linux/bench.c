@@ -1,0 +1,250 @@
+/*
+ * bench: the accuracy/speed-up study of the multi-rate executive, for one
+ * numeric build, in one run on one scenario.
+ *
+ *   bench SCENARIO.scn [DURATION_S]
+ *
+ * Runs the scenario single-rate (every integrating segment at 2 us, the
+ * reference), then multi-rate with every coupling, and the averaged
+ * inverter; measures wall time, real-time factors and the errors against
+ * the reference (RMS over the run of the difference, relative to the RMS
+ * of the reference signal); times each segment's step on its own. Prints a
+ * table on stderr and one JSON object on stdout.
+ */
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <time.h>
+
+#include "executive.h"
+#include "uuv_config.h"
+
+#define MAX_RECORDS 4096
+
+typedef struct {
+    exec_frame rec[MAX_RECORDS];
+    size_t n;
+    double wall_s;
+    exec_state state;
+} run_data;
+
+static double now_s(void) {
+    struct timespec ts;
+    clock_gettime(CLOCK_MONOTONIC, &ts);
+    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
+}
+
+static scenario scn;
+static exec ex;
+
+static int run(const exec_config *cfg, run_data *out) {
+    if (exec_init(&ex, cfg, &scn) != EXEC_OK) {
+        fprintf(stderr, "bench: the executive refused the configuration\n");
+        return -1;
+    }
+    out->n = 0;
+    (void)exec_report_take(&ex, &out->rec[out->n++]);
+    double t0 = now_s();
+    while (ex.state == EXEC_RUNNING) {
+        exec_desk_step(&ex);
+        if (ex.report_ready && out->n < MAX_RECORDS) {
+            (void)exec_report_take(&ex, &out->rec[out->n++]);
+        }
+    }
+    out->wall_s = now_s() - t0;
+    out->state = ex.state;
+    return 0;
+}
+
+/* RMS of (a - b) relative to the RMS of b, in per cent, for one field. */
+static double rel_rms(const run_data *a, const run_data *b, size_t offset) {
+    double se = 0.0;
+    double sr = 0.0;
+    size_t n = (a->n < b->n) ? a->n : b->n;
+    for (size_t i = 0; i < n; i++) {
+        double x = *(const double *)(const void *)((const char *)&a->rec[i] + offset);
+        double y = *(const double *)(const void *)((const char *)&b->rec[i] + offset);
+        se += (x - y) * (x - y);
+        sr += y * y;
+    }
+    return sr > 0.0 ? 100.0 * sqrt(se / sr) : 0.0;
+}
+
+/* Horizontal position error relative to the RMS distance travelled, per cent. */
+static double pos_rms(const run_data *a, const run_data *b) {
+    double se = 0.0;
+    double sr = 0.0;
+    size_t n = (a->n < b->n) ? a->n : b->n;
+    for (size_t i = 0; i < n; i++) {
+        double dx = a->rec[i].x[VESSEL_X_M] - b->rec[i].x[VESSEL_X_M];
+        double dy = a->rec[i].x[VESSEL_Y_M] - b->rec[i].x[VESSEL_Y_M];
+        se += dx * dx + dy * dy;
+        sr += b->rec[i].x[VESSEL_X_M] * b->rec[i].x[VESSEL_X_M] +
+              b->rec[i].x[VESSEL_Y_M] * b->rec[i].x[VESSEL_Y_M];
+    }
+    return sr > 0.0 ? 100.0 * sqrt(se / sr) : 0.0;
+}
+
+#define FIELD_X(i) (offsetof(exec_frame, x) + (size_t)(i) * sizeof(double))
+
+typedef struct {
+    double shaft, current, surge, position;
+} errors;
+
+static errors compare(const run_data *a, const run_data *ref) {
+    errors e;
+    e.shaft = rel_rms(a, ref, FIELD_X(VESSEL_N_RPM));
+    e.current = rel_rms(a, ref, offsetof(exec_frame, i_rms_a));
+    e.surge = rel_rms(a, ref, FIELD_X(VESSEL_U_MPS));
+    e.position = pos_rms(a, ref);
+    return e;
+}
+
+/* Per-step cost of each segment, timed in isolation on a running plant [ns]. */
+static void segment_costs(const exec_config *base, double ns[4]) {
+    exec_config cfg = *base;
+    cfg.duration_s = 10.0;
+    exec_init(&ex, &cfg, &scn);
+    /* Bring the drive to a running state first. */
+    for (int i = 0; i < 250000 && ex.state == EXEC_RUNNING; i++) {
+        exec_desk_step(&ex);
+    }
+    static drive_segment d;
+    d = ex.drive;
+    const int n_fast = 2000000;
+    double t0 = now_s();
+    for (int i = 0; i < n_fast; i++) {
+        drive_fast_tick(&d);
+    }
+    ns[0] = 1e9 * (now_s() - t0) / n_fast;
+    d = ex.drive;
+    const int n_med = 100000;
+    t0 = now_s();
+    for (int i = 0; i < n_med; i++) {
+        drive_medium_task(&d, false);
+    }
+    ns[1] = 1e9 * (now_s() - t0) / n_med;
+    d = ex.drive;
+    t0 = now_s();
+    for (int i = 0; i < n_med; i++) {
+        drive_medium_task(&d, true);
+    }
+    /* The controller's own cost: a motor step with it minus one without. */
+    ns[2] = 1e9 * (now_s() - t0) / n_med - ns[1];
+    static vessel_model v;
+    v = ex.vessel;
+    double x[VESSEL_NSTATES];
+    memcpy(x, ex.x, sizeof x);
+    battery b = ex.bat;
+    battery_frame_meas bm = {-5.0, 25.0, -3000.0};
+    const int n_slow = 20000;
+    t0 = now_s();
+    for (int i = 0; i < n_slow; i++) {
+        (void)vessel_step(&v, x, &ex.cmd);
+        battery_step_f64(&b, &bm);
+        (void)battery_companion_f64(&b);
+    }
+    ns[3] = 1e9 * (now_s() - t0) / n_slow;
+}
+
+static const char *const down_names[] = {"zoh", "foh", "deriv", "stagger"};
+static const char *const up_names[] = {"avg", "filter", "sample"};
+
+static int load(const char *path) {
+    FILE *f = fopen(path, "rb");
+    if (f == NULL) {
+        fprintf(stderr, "bench: %s: cannot open\n", path);
+        return -1;
+    }
+    static char buf[1 << 16];
+    size_t n = fread(buf, 1, sizeof buf, f);
+    fclose(f);
+    scenario_error err;
+    if (!scenario_parse(&scn, buf, n, &err)) {
+        fprintf(stderr, "bench: %s:%u: %s: %s\n", path, err.line, err.field, err.message);
+        return -1;
+    }
+    return 0;
+}
+
+int main(int argc, char **argv) {
+    if (argc < 2 || argc > 3) {
+        fprintf(stderr, "usage: bench SCENARIO.scn [DURATION_S]\n");
+        return 2;
+    }
+    if (load(argv[1]) != 0) {
+        return 2;
+    }
+    exec_config cfg;
+    exec_config_default(&cfg);
+    cfg.duration_s = (argc == 3) ? atof(argv[2]) : 2.0;
+    static run_data ref, mr, avg, cpl;
+    exec_config c = cfg;
+    c.single_rate = true;
+    if (run(&c, &ref) != 0) {
+        return 1;
+    }
+    if (run(&cfg, &mr) != 0) {
+        return 1;
+    }
+    c = cfg;
+    c.inverter = DRIVE_INVERTER_AVERAGED;
+    if (run(&c, &avg) != 0) {
+        return 1;
+    }
+    double sim_s = mr.rec[mr.n - 1].t_s;
+    errors e = compare(&mr, &ref);
+    double ns[4];
+    segment_costs(&cfg, ns);
+
+    fprintf(stderr, "%s build, %.1f s of %s\n", UUV_NUMERIC_NAME, sim_s, argv[1]);
+    fprintf(stderr, "  real-time factor: switching %.0f, averaged %.0f\n", sim_s / mr.wall_s,
+            sim_s / avg.wall_s);
+    fprintf(stderr, "  cost per step: fast %.1f ns, motor %.1f ns, controller %.1f ns, "
+                    "slow %.0f ns\n",
+            ns[0], ns[1], ns[2], ns[3]);
+    fprintf(stderr, "  single-rate %.2f s, multi-rate %.4f s: speed-up %.0fx\n", ref.wall_s,
+            mr.wall_s, ref.wall_s / mr.wall_s);
+    fprintf(stderr, "  errors vs single-rate (RMS, %% of reference RMS):\n");
+    fprintf(stderr, "    %-16s %8s %8s %8s %8s\n", "coupling", "shaft", "current", "surge",
+            "position");
+    printf("{\"build\": \"%s\", \"sim_time_s\": %.6g, \"rtf_switching\": %.6g, "
+           "\"rtf_averaged\": %.6g, \"speedup_vs_single_rate\": %.6g, "
+           "\"wall_single_rate_s\": %.6g, \"wall_multi_rate_s\": %.6g, "
+           "\"err_shaft_speed_pct\": %.6g, \"err_current_pct\": %.6g, "
+           "\"err_surge_speed_pct\": %.6g, \"err_position_pct\": %.6g, "
+           "\"ns_per_step\": {\"fast\": %.4g, \"medium\": %.4g, \"control\": %.4g, "
+           "\"slow\": %.4g}, \"couplings\": [",
+           UUV_NUMERIC_NAME, sim_s, sim_s / mr.wall_s, sim_s / avg.wall_s,
+           ref.wall_s / mr.wall_s, ref.wall_s, mr.wall_s, e.shaft, e.current, e.surge,
+           e.position, ns[0], ns[1], ns[2], ns[3]);
+    bool first = true;
+    for (int dn = 0; dn < 4; dn++) {
+        for (int up = 0; up < 3; up++) {
+            c = cfg;
+            c.down = (coupling_down)dn;
+            c.up = (coupling_up)up;
+            if (run(&c, &cpl) != 0) {
+                return 1;
+            }
+            errors ce = compare(&cpl, &ref);
+            char name[32];
+            snprintf(name, sizeof name, "%s/%s", down_names[dn], up_names[up]);
+            fprintf(stderr, "    %-16s %8.3f %8.3f %8.3f %8.3f%s\n", name, ce.shaft, ce.current,
+                    ce.surge, ce.position, cpl.state == EXEC_DONE ? "" : "  (stopped)");
+            printf("%s{\"coupling\": \"%s\", \"err_shaft_speed_pct\": %.6g, "
+                   "\"err_current_pct\": %.6g, \"err_surge_speed_pct\": %.6g, "
+                   "\"err_position_pct\": %.6g}",
+                   first ? "" : ", ", name, ce.shaft, ce.current, ce.surge, ce.position);
+            first = false;
+        }
+    }
+    errors ae = compare(&avg, &ref);
+    fprintf(stderr, "    %-16s %8.3f %8.3f %8.3f %8.3f\n", "averaged", ae.shaft, ae.current,
+            ae.surge, ae.position);
+    printf("], \"averaged\": {\"err_shaft_speed_pct\": %.6g, \"err_current_pct\": %.6g, "
+           "\"err_surge_speed_pct\": %.6g, \"err_position_pct\": %.6g}}\n",
+           ae.shaft, ae.current, ae.surge, ae.position);
+    return 0;
+}
