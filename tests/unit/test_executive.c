@@ -1,0 +1,110 @@
+/*
+ * The executive with the whole plant: the closed loop from rest to
+ * 1000 rpm against the propeller load (overshoot, settling, steady error),
+ * determinism of a repeated run, and the schedule's step counts. Runs in
+ * the build's numeric type, on the host and on every target.
+ */
+#include "executive.h"
+#include "math/umath.h"
+#include "ut.h"
+
+void suite_executive(void);
+
+static scenario scn;
+static exec ex;
+
+static size_t text_len(const char *s) {
+    size_t n = 0;
+    while (s[n] != '\0') {
+        n++;
+    }
+    return n;
+}
+
+/* Documented settling time of the speed step (docs/multirate.md). */
+#define SETTLE_LIMIT_S 1.0
+#define RPM_PER_RADPS (30.0 / 3.14159265358979323846)
+
+typedef struct {
+    double peak_rpm;
+    double settle_s;       /* last time outside the 2 % band */
+    double mean_err_pct;   /* mean error over the last 0.5 s */
+    double final_x[VESSEL_NSTATES];
+    uint32_t saturations;
+} step_result;
+
+static void run_step(const exec_config *cfg, step_result *r) {
+    UT_CHECK(exec_init(&ex, cfg, &scn) == EXEC_OK);
+    *r = (step_result){0};
+    double err_sum = 0.0;
+    uint32_t err_n = 0u;
+    exec_frame f;
+    while (ex.state == EXEC_RUNNING) {
+        exec_desk_step(&ex);
+        if (ex.count.fast % 50u != 0u) {
+            continue;
+        }
+        double t = exec_time_s(&ex);
+        double n = drive_shaft_radps(&ex.drive) * RPM_PER_RADPS;
+        if (n > r->peak_rpm) {
+            r->peak_rpm = n;
+        }
+        if (n < 980.0 || n > 1020.0) {
+            r->settle_s = t;
+        }
+        if (t >= 1.5) {
+            err_sum += n - 1000.0;
+            err_n++;
+        }
+        (void)exec_report_take(&ex, &f);
+    }
+    UT_CHECK(ex.state == EXEC_DONE);
+    r->mean_err_pct = (err_n > 0u) ? 100.0 * err_sum / (double)err_n / 1000.0 : 100.0;
+    for (int i = 0; i < VESSEL_NSTATES; i++) {
+        r->final_x[i] = ex.x[i];
+    }
+    r->saturations = ex.count.saturations;
+}
+
+void suite_executive(void) {
+    const char *text = "duration 2\nat 0 n_rpm=1000\n";
+    scenario_error err;
+    UT_CHECK(scenario_parse(&scn, text, text_len(text), &err));
+    exec_config cfg;
+    exec_config_default(&cfg);
+
+    UT_TEST("closed loop, rest to 1000 rpm with the propeller load: overshoot <= 5 %, "
+            "settled (2 % band) within 1 s, steady error <= 0.5 %");
+    static step_result a;
+    run_step(&cfg, &a);
+    ut_info("peak %.1f rpm (overshoot %.2f %%), settled at %.3f s, steady error %.3f %%",
+            a.peak_rpm, (a.peak_rpm - 1000.0) / 10.0, a.settle_s, a.mean_err_pct);
+    UT_CHECK(a.peak_rpm <= 1050.0);
+    UT_CHECK(a.settle_s <= SETTLE_LIMIT_S);
+    UT_CHECK(math_fabs_f64(a.mean_err_pct) <= 0.5);
+    UT_EQ_INT(a.saturations, 0);
+
+    UT_TEST("schedule: 2 s is 1e6 fast, 2e4 motor, 2500 controller and 20 slow steps");
+    UT_EQ_INT(ex.count.fast, 1000000);
+    UT_EQ_INT(ex.count.medium, 20000);
+    UT_EQ_INT(ex.count.control, 2500);
+    UT_EQ_INT(ex.count.slow, 20);
+    UT_EQ_INT(ex.count.overruns_medium + ex.count.overruns_slow, 0);
+
+    UT_TEST("the vehicle moves ahead and the battery delivers the shaft's energy plus losses");
+    UT_CHECK(a.final_x[VESSEL_U_MPS] > 0.2 && a.final_x[VESSEL_U_MPS] < 0.5);
+    UT_CHECK(ex.count.e_batt_j > ex.count.e_mech_j && ex.count.e_mech_j > 0.0);
+    ut_info("battery %.1f J, shaft %.1f J (%.1f %%)", ex.count.e_batt_j, ex.count.e_mech_j,
+            100.0 * ex.count.e_mech_j / ex.count.e_batt_j);
+
+    UT_TEST("determinism: the same run twice gives the same bits");
+    static step_result b;
+    cfg.duration_s = 0.5;
+    run_step(&cfg, &a);
+    run_step(&cfg, &b);
+    bool same = true;
+    for (int i = 0; i < VESSEL_NSTATES; i++) {
+        same = same && (a.final_x[i] == b.final_x[i]);
+    }
+    UT_CHECK(same);
+}
