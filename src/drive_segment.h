@@ -156,6 +156,7 @@ typedef struct {
     q31_t i_fast[2];            /* Q31 of 256 A */
     int32_t e[2];               /* Q3.28 of 1024 V, the EMF in force */
     int32_t e_step[2];          /* its change per fast step (FOH, DERIV) */
+    bool e_moves;               /* the coupling extrapolates e (FOH, DERIV) */
     int32_t k_mant;             /* a_ss h1 * 32 (Q31 current step per Q3.28 volt) as */
     uint32_t k_shift;           /* mantissa and right shift */
     int32_t e_mant;             /* 1 / (k_l N) as mantissa ... */
@@ -213,6 +214,7 @@ typedef struct {
     float i_fast[2];            /* [A] */
     float e[2];                 /* [V] */
     float e_step[2];            /* [V per fast step] */
+    bool e_moves;               /* the coupling extrapolates e (FOH, DERIV) */
     float k_l;                  /* [A/V per fast step] a_ss h1 */
     float e_per_di;             /* [V/A] 1 / (a_ss h2) */
     float filt[2];              /* [V] */

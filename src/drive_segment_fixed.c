@@ -10,6 +10,7 @@
 
 #include "math/umath.h"
 #include "models/drive_units.h"
+#include "models/power_stage_fast.h"
 
 #define Q31_ONE 2147483648.0
 #define Q28_ONE 268435456.0
@@ -85,36 +86,80 @@ drive_status drive_init(drive_segment *d, const drive_config *cfg, const propell
     }
     /* First-order filter gain per fast step: step / frame, Q16. */
     d->filt_k = (uint32_t)(65536u / cfg->fast_per_medium);
+    d->e_moves = (cfg->down == COUPLE_FOH || cfg->down == COUPLE_DERIV);
     return DRIVE_OK;
 }
 
-void drive_fast_tick(drive_segment *d) {
-    power_stage_q *ps = d->stage;
-    if (d->cfg.inverter == DRIVE_INVERTER_AVERAGED) {
-        inverter_avg_step_q(&d->avg, &d->in);
-    } else {
-        pwm_step_q(&d->pwm, &d->pout);
-        d->in.duty[0] = d->pout.duty[0];
-        d->in.duty[1] = d->pout.duty[1];
-        d->in.duty[2] = d->pout.duty[2];
-        power_stage_step_q(ps, &d->in);
+/*
+ * The fast companion's current step floor((v - e) k_mant / 2^k_shift), Q31
+ * of 256 A. At the 2 us step k_shift is 37 or so: the floor is then taken in
+ * two exact stages, the high word of the 64-bit product (floor by 2^32)
+ * and a 32-bit floor shift by the rest (floor(floor(p / 2^32) / 2^s) =
+ * floor(p / 2^(32 + s))), which on a 32-bit core is one SMULL and three
+ * instructions instead of a 64-bit variable shift. Long steps (the averaged
+ * inverter at the motor frame) take the general 64-bit shift.
+ */
+static inline q31_t fast_current_step(int32_t dv, int32_t mant, uint32_t shift) {
+    int64_t p = (int64_t)dv * mant;
+    if (shift >= 32u) {
+        return fp_shr_floor_i32((int32_t)fp_shr_floor_i64(p, 32u), shift - 32u);
     }
-    int32_t va = ps->ph[0].v_c;
-    int32_t vb = ps->ph[1].v_c;
-    /* The motor's fast companion: di = a_ss h (v - e), with the new capacitor voltages. */
-    d->e[0] += d->e_step[0];
-    d->e[1] += d->e_step[1];
-    d->i_fast[0] += (q31_t)fp_shr_floor_i64((int64_t)(va - d->e[0]) * d->k_mant, d->k_shift);
-    d->i_fast[1] += (q31_t)fp_shr_floor_i64((int64_t)(vb - d->e[1]) * d->k_mant, d->k_shift);
-    d->in.i_motor[0] = fp_narrow_q15(d->i_fast[0]);
-    d->in.i_motor[1] = fp_narrow_q15(d->i_fast[1]);
-    int32_t vdc = ps->v_dc;
+    return (q31_t)fp_shr_floor_i64(p, shift);
+}
+
+/*
+ * What every fast step does after the power stage: the motor's fast
+ * companion di = a_ss h (v - e) with the new capacitor voltages, and the
+ * frame sums. The EMF moves only in the extrapolating modes (FOH, DERIV:
+ * e_step is zero otherwise, so skipping the addition changes nothing).
+ */
+static inline void fast_companion_and_sums(drive_segment *d, const power_stage_q *ps) {
+    const int32_t va = ps->ph[0].v_c;
+    const int32_t vb = ps->ph[1].v_c;
+    const int32_t vdc = ps->v_dc;
+    int32_t ea = d->e[0];
+    int32_t eb = d->e[1];
+    if (d->e_moves) {
+        ea += d->e_step[0];
+        eb += d->e_step[1];
+        d->e[0] = ea;
+        d->e[1] = eb;
+    }
+    const q31_t ia = d->i_fast[0] + fast_current_step(va - ea, d->k_mant, d->k_shift);
+    const q31_t ib = d->i_fast[1] + fast_current_step(vb - eb, d->k_mant, d->k_shift);
+    d->i_fast[0] = ia;
+    d->i_fast[1] = ib;
+    d->in.i_motor[0] = fp_narrow_q15(ia);
+    d->in.i_motor[1] = fp_narrow_q15(ib);
     d->sums.v_cap[0] += va;
     d->sums.v_cap[1] += vb;
     d->sums.v_dc += vdc;
+    /* vdc^2 >= 0: a plain shift of a non-negative value. */
     d->sums.v_dc_sq += ((int64_t)vdc * (int64_t)vdc) >> 28;
     d->sums.n++;
+}
+
+void drive_fast_tick(drive_segment *d) {
+    if (d->cfg.inverter == DRIVE_INVERTER_SWITCHING) {
+        /* The real-time path: modulator and power stage fused (power_stage_fast.h). */
+        ps_fast_step_q(&d->pwm, &d->ps, &d->in.battery, d->in.i_motor[0], d->in.i_motor[1],
+                       d->pout.state);
+        fast_companion_and_sums(d, &d->ps);
+    } else {
+        if (d->cfg.inverter == DRIVE_INVERTER_AVERAGED) {
+            inverter_avg_step_q(&d->avg, &d->in);
+        } else {
+            pwm_step_q(&d->pwm, &d->pout);
+            d->in.duty[0] = d->pout.duty[0];
+            d->in.duty[1] = d->pout.duty[1];
+            d->in.duty[2] = d->pout.duty[2];
+            power_stage_step_q(&d->ps, &d->in);
+        }
+        fast_companion_and_sums(d, d->stage);
+    }
     if (d->cfg.up == COUPLE_FILTER) {
+        const int32_t va = d->stage->ph[0].v_c;
+        const int32_t vb = d->stage->ph[1].v_c;
         d->filt[0] += ((int64_t)va * 65536 - d->filt[0]) * (int64_t)d->filt_k / 65536;
         d->filt[1] += ((int64_t)vb * 65536 - d->filt[1]) * (int64_t)d->filt_k / 65536;
     }

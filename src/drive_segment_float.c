@@ -9,6 +9,7 @@
 #if UUV_NUMERIC == UUV_NUMERIC_FLOAT
 
 #include "math/umath.h"
+#include "models/power_stage_fast.h"
 
 static const pwm_params pwm_sampled = {5000.0, PWM_EDGES_SAMPLED, 0u, 0u};
 static const pwm_params pwm_located = {5000.0, PWM_EDGES_INTERPOLATED, 0u, 0u};
@@ -61,37 +62,61 @@ drive_status drive_init(drive_segment *d, const drive_config *cfg, const propell
         return DRIVE_ERR_MODEL;
     }
     d->filt_k = 1.0f / (float)cfg->fast_per_medium;
+    d->e_moves = (cfg->down == COUPLE_FOH || cfg->down == COUPLE_DERIV);
     return DRIVE_OK;
 }
 
-void drive_fast_tick(drive_segment *d) {
-    power_stage_f32 *ps = d->stage;
-    if (d->cfg.inverter == DRIVE_INVERTER_AVERAGED) {
-        inverter_avg_step_f32(&d->avg, &d->in);
-    } else {
-        pwm_step_f32(&d->pwm, &d->pout);
-        d->in.duty[0] = d->pout.duty[0];
-        d->in.duty[1] = d->pout.duty[1];
-        d->in.duty[2] = d->pout.duty[2];
-        power_stage_step_f32(ps, &d->in);
+/*
+ * What every fast step does after the power stage: the motor's fast
+ * companion and the frame sums (as in drive_segment_fixed.c; the EMF moves
+ * only in the extrapolating modes).
+ */
+static inline void fast_companion_and_sums(drive_segment *d, const power_stage_f32 *ps) {
+    const float va = ps->ph[0].v_c;
+    const float vb = ps->ph[1].v_c;
+    const float vdc = ps->v_dc;
+    float ea = d->e[0];
+    float eb = d->e[1];
+    if (d->e_moves) {
+        ea += d->e_step[0];
+        eb += d->e_step[1];
+        d->e[0] = ea;
+        d->e[1] = eb;
     }
-    float va = ps->ph[0].v_c;
-    float vb = ps->ph[1].v_c;
-    d->e[0] += d->e_step[0];
-    d->e[1] += d->e_step[1];
-    d->i_fast[0] += (va - d->e[0]) * d->k_l;
-    d->i_fast[1] += (vb - d->e[1]) * d->k_l;
-    d->in.i_motor_a[0] = d->i_fast[0];
-    d->in.i_motor_a[1] = d->i_fast[1];
-    float vdc = ps->v_dc;
+    const float ia = d->i_fast[0] + (va - ea) * d->k_l;
+    const float ib = d->i_fast[1] + (vb - eb) * d->k_l;
+    d->i_fast[0] = ia;
+    d->i_fast[1] = ib;
+    d->in.i_motor_a[0] = ia;
+    d->in.i_motor_a[1] = ib;
     d->sums.v_cap[0] += va;
     d->sums.v_cap[1] += vb;
     d->sums.v_dc += vdc;
     d->sums.v_dc_sq += vdc * vdc;
     d->sums.n++;
+}
+
+void drive_fast_tick(drive_segment *d) {
+    if (d->cfg.inverter == DRIVE_INVERTER_SWITCHING) {
+        /* The real-time path: modulator and power stage fused (power_stage_fast.h). */
+        ps_fast_step_f32(&d->pwm, &d->ps, &d->in.battery, d->in.i_motor_a[0],
+                         d->in.i_motor_a[1], d->pout.state);
+        fast_companion_and_sums(d, &d->ps);
+    } else {
+        if (d->cfg.inverter == DRIVE_INVERTER_AVERAGED) {
+            inverter_avg_step_f32(&d->avg, &d->in);
+        } else {
+            pwm_step_f32(&d->pwm, &d->pout);
+            d->in.duty[0] = d->pout.duty[0];
+            d->in.duty[1] = d->pout.duty[1];
+            d->in.duty[2] = d->pout.duty[2];
+            power_stage_step_f32(&d->ps, &d->in);
+        }
+        fast_companion_and_sums(d, d->stage);
+    }
     if (d->cfg.up == COUPLE_FILTER) {
-        d->filt[0] += (va - d->filt[0]) * d->filt_k;
-        d->filt[1] += (vb - d->filt[1]) * d->filt_k;
+        d->filt[0] += (d->stage->ph[0].v_c - d->filt[0]) * d->filt_k;
+        d->filt[1] += (d->stage->ph[1].v_c - d->filt[1]) * d->filt_k;
     }
 }
 
