@@ -60,6 +60,21 @@ summary_json() {
 }
 check "summary: --json carries the build and the turning-circle metrics" summary_json
 
+trace_window() {
+    "$uuvsim" --quiet --scenario scenarios/bench_2s.scn --duration 0.2 --trace "$tmp/t.csv" \
+        --trace-from 0.1 --trace-to 0.11 &&
+        head -n 1 "$tmp/t.csv" | grep -q '^t_s,sa,sb,sc,m_index,f_hz,v_dc,v_an,v_bn,v_cn,vc_a' &&
+        [ "$(wc -l <"$tmp/t.csv")" -eq 5002 ]
+}
+check "trace: one row per 2 us step in the window, with the documented columns" trace_window
+
+realtime() {
+    "$uuvsim" --json --realtime --scenario scenarios/bench_2s.scn --duration 0.3 >"$tmp/r.json" &&
+        grep -q '"realtime_lag_max_s"' "$tmp/r.json" &&
+        awk -F'[:,]' '/"wall_time_s"/ { exit !($2 >= 0.29) }' "$tmp/r.json"
+}
+check "realtime: the run is paced to the wall clock and reports its lag" realtime
+
 printf 'duration 10\nat 1 rudder=abc\n' >"$tmp/bad1.scn"
 expect_error "error: malformed value names file, line and field" \
     "bad1.scn:2: field 'rudder'" "$uuvsim" --scenario "$tmp/bad1.scn" --csv "$tmp/bad.csv"
