@@ -63,6 +63,14 @@ static inline float ps_fast_tri_f32(uint32_t ph_c) {
 }
 
 /*
+ * 1 when e > 0, else 0, for |e| < 2^31 (the modulator's comparison values):
+ * the sign bit of -e, formed modulo 2^32. Two instructions, no branch.
+ */
+static inline int32_t ps_fast_pos_q(int32_t e) {
+    return (int32_t)((0u - (uint32_t)e) >> 31);
+}
+
+/*
  * One fused step, fixed twin: pwm_step_q() with sampled edges (pw->edges
  * must be PWM_EDGES_SAMPLED) and power_stage_step_q() with the duties it
  * gives, the motor currents im_a, im_b (Q15 of 256 A) and the battery bat.
@@ -75,9 +83,9 @@ static inline void ps_fast_step_q(pwm_q *pw, power_stage_q *ps, const ps_battery
     const ps_coef_q *k = &ps->k;
     uint32_t sat = ps->sat_count;
     /* The comparison made at t_k is held over the step. */
-    const int32_t sa = pw->e[0] > 0;
-    const int32_t sb = pw->e[1] > 0;
-    const int32_t sc = pw->e[2] > 0;
+    const int32_t sa = ps_fast_pos_q(pw->e[0]);
+    const int32_t sb = ps_fast_pos_q(pw->e[1]);
+    const int32_t sc = ps_fast_pos_q(pw->e[2]);
     /* The comparison at t_k+1 for the next step: m sin against c, Q30 units (pwm_step.c). */
     const uint32_t ph_c = pw->ph_c + pw->inc_c;
     const uint32_t ph_s = pw->ph_s + pw->inc_s;
