@@ -115,10 +115,10 @@ float math_scale_f32(float x, int k);
 unsigned math_rem_pio2_f64(double x, double *hi, double *lo);
 unsigned math_rem_pio2_f32(float x, float *hi, float *lo);
 
-/* Natural logarithm of a positive finite x as hi + lo, |lo| <= ulp(hi)/2 (exp_log_f64.c). */
+/* Natural logarithm of a positive finite x as hi + *lo, |lo| <= ulp(hi)/2 (log_f64.c). */
 double math_log_dd_f64(double x, double *lo);
 
-/* exp(x + xlo) for |xlo| <= ulp(x), any x (exp_log_f64.c). */
+/* exp(x + xlo) for |xlo| <= ulp(x) and any x but a NaN (exp_f64.c). */
 double math_exp_dd_f64(double x, double xlo);
 
 #endif /* UUV_MATH_PRIVATE_H */

@@ -491,7 +491,7 @@ static void run_exact(void) {
     stat_report(&s, 0);
 
     stat_init(&s, "sqrt_f32", 0.0);
-    /* Every float in [1, 4) (both exponent parities) and every subnormal: all significands. */
+    /* Every float in [1, 4) (every significand, both exponent parities) and every subnormal. */
     for (uint32_t u = 0x3f800000u; u < 0x40800000u; u++) {
         float x;
         memcpy(&x, &u, sizeof x);
@@ -499,7 +499,7 @@ static void run_exact(void) {
         int same = same32(got, sqrtf(x));
         stat_note(&s, same ? 0.0 : INF64, (double)x, 0.0, same);
     }
-    for (uint32_t u = 1u; u < 0x00800000u; u += 7u) {
+    for (uint32_t u = 1u; u < 0x00800000u; u++) {
         float x;
         memcpy(&x, &u, sizeof x);
         int same = same32(math_sqrt_f32(x), sqrtf(x));
