@@ -1,6 +1,7 @@
 #!/bin/sh
 # Installs the tools `make test` needs when they are missing: the Arm
-# cross compiler, QEMU for Arm, clang. As root on a Debian-like machine it
+# cross compiler, QEMU for Arm, clang, and the lint tools (cppcheck with
+# its MISRA addon, which runs on python3; clang-tidy). As root on a Debian-like machine it
 # installs them; otherwise it prints the command to run and fails.
 set -u
 
@@ -10,6 +11,9 @@ need arm-none-eabi-gcc gcc-arm-none-eabi
 need qemu-system-arm qemu-system-arm
 need clang clang
 need gnuplot gnuplot-nox
+need cppcheck cppcheck
+need clang-tidy clang-tidy
+need python3 python3
 
 [ -z "$missing" ] && exit 0
 

@@ -33,8 +33,9 @@ const char cli_usage[] =
     "  --csv FILE               telemetry, one row per 100 ms\n"
     "  --trace FILE             every 2 us step between --trace-from and --trace-to [s]\n"
     "  --realtime               pace the run to the wall clock\n"
-    "  --json                   summary as JSON on stdout\n"
-    "  --quiet                  no summary\n"
+    "  --summary FILE           the summary as JSON, to a file\n"
+    "  --json                   the summary as JSON on stdout\n"
+    "  --quiet                  no text summary, no progress line\n"
     "  --help, --version\n"
     "\n"
     "derivs FILE.csv: reads commands and states in the layout of the reference\n"
@@ -49,6 +50,13 @@ static bool fail(char *err, size_t len, const char *format, ...) {
     va_start(args, format);
     (void)vsnprintf(err, len, format, args);
     va_end(args);
+    /* An argument echoed in the message may hold control characters; the
+     * message stays on one line, as cli.h promises. */
+    for (size_t i = 0; i < len && err[i] != '\0'; i++) {
+        if ((unsigned char)err[i] < 0x20u || err[i] == '\x7f') {
+            err[i] = '?';
+        }
+    }
     return false;
 }
 
@@ -67,6 +75,7 @@ static const opt_spec options[] = {
     {"--scenario", OPT_PATH, NULL, FIELD(scenario_path)},
     {"--csv", OPT_PATH, NULL, FIELD(csv_path)},
     {"--trace", OPT_PATH, NULL, FIELD(trace_path)},
+    {"--summary", OPT_PATH, NULL, FIELD(summary_path)},
     {"--duration", OPT_SECONDS, NULL, FIELD(exec.duration_s)},
     {"--trace-from", OPT_SECONDS, NULL, FIELD(trace_from_s)},
     {"--trace-to", OPT_SECONDS, NULL, FIELD(trace_to_s)},

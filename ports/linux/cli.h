@@ -17,13 +17,14 @@ typedef struct {
     const char *scenario_path;  /* --scenario */
     const char *csv_path;       /* --csv */
     const char *trace_path;     /* --trace */
+    const char *summary_path;   /* --summary: the JSON summary, to a file */
     const char *derivs_path;    /* derivs FILE */
     double trace_from_s;        /* --trace-from */
     double trace_to_s;          /* --trace-to */
     exec_config exec;           /* plant, laws, inverter, couplings, rates, duration */
     bool realtime;
-    bool json;
-    bool quiet;
+    bool json;                  /* the JSON summary on stdout (instead of the text one) */
+    bool quiet;                 /* no text summary, no progress line */
 } cli_options;
 
 /*

@@ -71,52 +71,52 @@ static const char *const inverter_names[] = {"switching", "averaged", "event"};
 static const char *const down_names[] = {"zoh", "foh", "deriv", "stagger"};
 static const char *const up_names[] = {"avg", "filter", "sample"};
 
-static void print_json(const run_result *r) {
+static void print_json(FILE *f_out, const run_result *r) {
     const exec *e = r->e;
     const exec_frame *f = &r->last;
     const manoeuvre_result *m = exec_manoeuvre(e);
     double sim_s = f->t_s;
-    printf("{\n  \"build\": \"%s\",\n  \"mode\": \"%s\",\n", UUV_NUMERIC_NAME,
+    fprintf(f_out, "{\n  \"build\": \"%s\",\n  \"mode\": \"%s\",\n", UUV_NUMERIC_NAME,
            e->cfg.single_rate ? "single-rate" : "multi-rate");
-    printf("  \"plant\": \"%s\",\n  \"propulsion\": \"%s\",\n  \"inverter\": \"%s\",\n",
+    fprintf(f_out, "  \"plant\": \"%s\",\n  \"propulsion\": \"%s\",\n  \"inverter\": \"%s\",\n",
            plant_names[e->cfg.plant], law_names[e->cfg.propulsion],
            inverter_names[e->cfg.inverter]);
-    printf("  \"slow_to_fast\": \"%s\",\n  \"fast_to_slow\": \"%s\",\n", down_names[e->cfg.down],
+    fprintf(f_out, "  \"slow_to_fast\": \"%s\",\n  \"fast_to_slow\": \"%s\",\n", down_names[e->cfg.down],
            up_names[e->cfg.up]);
-    printf("  \"sim_time_s\": %.9g,\n  \"wall_time_s\": %.6g,\n  \"realtime_factor\": %.6g,\n",
+    fprintf(f_out, "  \"sim_time_s\": %.9g,\n  \"wall_time_s\": %.6g,\n  \"realtime_factor\": %.6g,\n",
            sim_s, r->wall_s, r->wall_s > 0.0 ? sim_s / r->wall_s : 0.0);
-    printf("  \"steps\": {\"fast\": %llu, \"medium\": %llu, \"control\": %llu, \"slow\": %llu},\n",
+    fprintf(f_out, "  \"steps\": {\"fast\": %llu, \"medium\": %llu, \"control\": %llu, \"slow\": %llu},\n",
            (unsigned long long)e->count.fast, (unsigned long long)e->count.medium,
            (unsigned long long)e->count.control, (unsigned long long)e->count.slow);
-    printf("  \"overruns\": %u,\n  \"saturations\": %u,\n",
+    fprintf(f_out, "  \"overruns\": %u,\n  \"saturations\": %u,\n",
            e->count.overruns_medium + e->count.overruns_slow, e->count.saturations);
-    printf("  \"energy_wh\": %.9g,\n  \"mechanical_energy_wh\": %.9g,\n",
+    fprintf(f_out, "  \"energy_wh\": %.9g,\n  \"mechanical_energy_wh\": %.9g,\n",
            e->count.e_batt_j / 3600.0, e->count.e_mech_j / 3600.0);
     if (r->o->realtime) {
-        printf("  \"realtime_lag_max_s\": %.6g,\n  \"realtime_late_frames\": %u,\n",
+        fprintf(f_out, "  \"realtime_lag_max_s\": %.6g,\n  \"realtime_late_frames\": %u,\n",
                r->realtime_lag_max_s, r->realtime_late);
     }
-    printf("  \"final\": {");
+    fprintf(f_out, "  \"final\": {");
     for (int i = 0; i < 12; i++) {
-        printf("\"%s\": %.10g, ", vessel_state_names[i], f->x[i]);
+        fprintf(f_out, "\"%s\": %.10g, ", vessel_state_names[i], f->x[i]);
     }
-    printf("\"n_rpm\": %.10g, \"soc\": %.10g}", f->x[VESSEL_N_RPM],
+    fprintf(f_out, "\"n_rpm\": %.10g, \"soc\": %.10g}", f->x[VESSEL_N_RPM],
            e->cfg.plant == EXEC_PLANT_FULL ? e->bat.soc : 1.0);
     if (m->turn_executed && !m->zigzag) {
-        printf(",\n  \"turning_circle\": {\"advance_m\": %.6g, \"transfer_m\": %.6g, "
+        fprintf(f_out, ",\n  \"turning_circle\": {\"advance_m\": %.6g, \"transfer_m\": %.6g, "
                "\"tactical_diameter_m\": %.6g, \"steady_diameter_m\": %.6g, "
                "\"speed_loss_pct\": %.6g}",
                m->advance_m, m->transfer_m, m->tactical_diameter_m, m->steady_diameter_m,
                m->speed_loss_pct);
     }
     if (m->zigzag) {
-        printf(",\n  \"zigzag\": {\"overshoot_deg\": [");
+        fprintf(f_out, ",\n  \"zigzag\": {\"overshoot_deg\": [");
         for (size_t i = 0; i < m->n_overshoots; i++) {
-            printf("%s%.6g", i ? ", " : "", m->overshoot_deg[i]);
+            fprintf(f_out, "%s%.6g", i ? ", " : "", m->overshoot_deg[i]);
         }
-        printf("], \"period_s\": %.6g}", m->period_s);
+        fprintf(f_out, "], \"period_s\": %.6g}", m->period_s);
     }
-    printf("\n}\n");
+    fprintf(f_out, "\n}\n");
 }
 
 static void print_text(const run_result *r) {
@@ -268,12 +268,20 @@ static int run(const cli_options *o) {
     if (!ok_files) {
         return 2;
     }
-    if (!o->quiet) {
-        if (o->json) {
-            print_json(&r);
-        } else {
-            print_text(&r);
+    if (o->summary_path != NULL) {
+        out_file sum;
+        if (!out_open(&sum, o->summary_path)) {
+            return 2;
         }
+        print_json(sum.f, &r);
+        if (!out_close(&sum)) {
+            return 2;
+        }
+    }
+    if (o->json) {
+        print_json(stdout, &r);
+    } else if (!o->quiet) {
+        print_text(&r);
     }
     return e.state == EXEC_DONE ? 0 : 1;
 }

@@ -201,7 +201,10 @@ static q31_t dc_feedforward_q(drive_control_q *c, q31_t freq, q31_t iq) {
 static q15_t dc_modulation_q(const drive_control_q *c, q31_t v, q31_t vdc) {
     uint32_t vdc15 = (uint32_t)fp_shr_round_i32(vdc, 16u);
     uint32_t m = ((uint32_t)v + vdc15 / 2u) / vdc15;
-    return (m > (uint32_t)c->m_max) ? c->m_max : (q15_t)m;
+    if (m > (uint32_t)c->m_max) {
+        return c->m_max;
+    }
+    return (q15_t)m;
 }
 
 /* The current loop proper; the measured magnitude is already in out. */

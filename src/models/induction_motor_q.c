@@ -18,7 +18,7 @@
 static bool im_row_from_f64(induction_motor_row_q *r, double v0, double v1, double v2,
                             unsigned bits) {
     const double v[3] = {v0, v1, v2};
-    const double limit = (double)(1ul << bits) - 0.5;
+    const double limit = (double)(1UL << bits) - 0.5;
     double vmax = 0.0;
     double scale = 1.0;
     unsigned shift = 0u;

@@ -210,7 +210,6 @@ static void put_double(fmt_sink *s, const fmt_spec *spec, double x, char conv) {
         while (keep > 1 && p[keep - 1] == '0' && (!fixed || keep > e + 1)) {
             keep--;
         }
-        end = p + keep;
         digits = keep;
     }
     if (fixed) {
@@ -311,7 +310,8 @@ size_t fmt_vformat(char *buf, size_t cap, const char *format, va_list args) {
                 str = "(null)";
             }
             size_t n = 0;
-            while (str[n] != '\0' && (spec.precision < 0 || n < (size_t)spec.precision)) {
+            /* The precision is tested first: a "%.*s" argument need not be terminated. */
+            while ((spec.precision < 0 || n < (size_t)spec.precision) && str[n] != '\0') {
                 n++;
             }
             put_field(&s, &spec, str, n);

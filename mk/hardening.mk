@@ -1,0 +1,64 @@
+# Hardening: static analysis, proof, fuzzing and coverage (docs/reliability.md).
+#
+#   make lint       cppcheck with the MISRA C:2012 addon over src/, then
+#                   clang-tidy; fails on any finding that docs/misra.md does
+#                   not list as a deviation
+#   make prove      Frama-C Eva over src/fixedpoint: fails on any alarm
+#   make fuzz       a short campaign of every libFuzzer harness (FUZZ_SECONDS each)
+#   make fuzz-replay  every seed in tests/fuzz/corpus_*/ through its harness
+#   make coverage   gcov/lcov branch coverage of the host unit tests, per folder
+#   make san-sim    the 60 s desk simulation under ASan + UBSan, both builds
+
+.PHONY: lint prove fuzz fuzz-build fuzz-replay coverage san-sim
+
+FUZZ_HARNESSES := scenario cli decode
+FUZZ_SECONDS ?= 20
+FUZZ_DIR := $(BUILD)/fuzz
+FUZZ_CFLAGS := -std=c99 -Wall -Wextra -Wpedantic -Wconversion -Wdouble-promotion -Wshadow \
+    -Werror -ffp-contract=off -O1 -g -fno-omit-frame-pointer \
+    -fsanitize=fuzzer-no-link,address,undefined -fno-sanitize-recover=all \
+    -DUUV_NUMERIC=1 -D_POSIX_C_SOURCE=200809L -Isrc -Iports/linux -MMD -MP
+FUZZ_LIB_C := $(SRC_C) $(LINUX_PORT_C) ports/linux/cli.c
+FUZZ_LIB_O := $(patsubst %.c,$(FUZZ_DIR)/obj/%.o,$(FUZZ_LIB_C))
+
+$(FUZZ_DIR)/obj/%.o: %.c
+	@mkdir -p $(@D)
+	$(CLANG) $(FUZZ_CFLAGS) -c $< -o $@
+
+$(FUZZ_DIR)/fuzz_%: $(FUZZ_DIR)/obj/tests/fuzz/fuzz_%.o $(FUZZ_LIB_O)
+	$(CLANG) -fsanitize=fuzzer,address,undefined -o $@ $^ -lm
+
+# Kept after the link, so that a second make rebuilds nothing.
+.SECONDARY: $(FUZZ_LIB_O) $(foreach h,$(FUZZ_HARNESSES),$(FUZZ_DIR)/obj/tests/fuzz/fuzz_$(h).o)
+
+-include $(wildcard $(FUZZ_DIR)/obj/*/*.d $(FUZZ_DIR)/obj/*/*/*.d $(FUZZ_DIR)/obj/*/*/*/*.d)
+
+fuzz-build: $(foreach h,$(FUZZ_HARNESSES),$(FUZZ_DIR)/fuzz_$(h))
+
+fuzz-replay: fuzz-build
+	@BUILD="$(BUILD)" sh tools/fuzz.sh replay $(FUZZ_HARNESSES)
+
+fuzz: fuzz-build
+	@BUILD="$(BUILD)" sh tools/fuzz.sh campaign $(FUZZ_SECONDS) $(FUZZ_HARNESSES)
+
+lint:
+	@sh tools/lint.sh
+
+prove:
+	@sh tools/prove.sh
+
+coverage:
+	@BUILD="$(BUILD)" sh tools/coverage.sh
+
+san-sim: $(BUILD)/linux-fixed-san/uuvsim $(BUILD)/linux-float-san/uuvsim
+	@sh tests/host/test_san_sim.sh $(BUILD)/linux-fixed-san/uuvsim \
+	    $(BUILD)/linux-float-san/uuvsim
+
+# Coverage builds of the unit tests (gcc --coverage, -O0), both numeric
+# builds; kept out of HOST_VARIANTS so that make test does not run them.
+hardening_saved_variants := $(HOST_VARIANTS)
+$(eval $(call host_variant,linux-cov-fixed,$(CC),fixed,-O0 -g --coverage,--coverage))
+$(eval $(call host_variant,linux-cov-float,$(CC),float,-O0 -g --coverage,--coverage))
+HOST_VARIANTS := $(hardening_saved_variants)
+
+coverage: $(BUILD)/linux-cov-fixed/unit_tests $(BUILD)/linux-cov-float/unit_tests
