@@ -105,28 +105,58 @@ $(eval $(call host_variant,linux-clang-fixed,$(CLANG),fixed,$(HOST_OPT),))
 $(eval $(call host_variant,linux-clang-float,$(CLANG),float,$(HOST_OPT),))
 
 # ---- Cortex-M variants ----------------------------------------------------
-# $(call fw_variant,MACHINE,NUMERIC,CPU_FLAGS,HAS_FPU,BOARD_SOURCE)
+# $(call fw_variant,MACHINE,NUMERIC,CPU_FLAGS,HAS_FPU,BOARD_SOURCE,TEST_PARTS,OPT)
+#
+# Each variant builds, from the same objects, the unit-test image
+# (unit_tests.elf, or unit_tests_partN.elf, one per group of suites, on a
+# machine whose flash cannot hold them all: TEST_PARTS lists the groups)
+# and the firmware simulation (uuvsim.elf, ports/cortexm/fw_main.c; see
+# mk/firmware.mk for running and measuring it). The firmware's scenarios
+# hold at most FW_SCENARIO_EVENTS commands, and its stack is FW_STACK_BYTES
+# (the static worst case, checked by make qemu-bench and make test, must fit).
+# OPT, when given, replaces -O2 for the whole variant: the Cortex-M3
+# images are built for size (-Os), as their 64 KiB flash budget requires.
 
 ARM_COMMON := $(COMMON) -O2 -g -ffreestanding -fno-tree-loop-distribute-patterns \
               -ffunction-sections -fdata-sections -fstack-usage
+FW_SCENARIO_EVENTS ?= 64
+FW_STACK_BYTES ?= 3072
+FW_SIM_C := ports/cortexm/fw_main.c
+# Code off the tick paths (the background's vessel and battery, start-up,
+# parsing, formatting) is compiled for size: the Cortex-M3's image must
+# fit in 64 KiB. The results do not change (no reassociation, no
+# contraction at any level).
+FW_SIZE_C := $(wildcard src/models/vessel*.c src/models/battery*.c src/math/*_f64.c) \
+             src/math/rem_pio2.c src/scenario.c src/util/fmt.c src/util/parse.c src/manoeuvre.c \
+             src/telemetry.c ports/cortexm/startup.c ports/cortexm/semihost.c
+TEST_PART1 := battery drive_control fixedpoint hal harness induction_motor math telemetry
+TEST_PART2 := $(filter-out $(TEST_PART1),$(SUITES))
+
+# The suite list of one part of the unit tests.
+$(BUILD)/gen/part%/suites.inc: FORCE
+	@mkdir -p $(@D)
+	@printf '%s\n' $(foreach s,$(TEST_PART$*),'UT_SUITE($(s))') > $@.tmp
+	@cmp -s $@.tmp $@ || mv $@.tmp $@
+	@rm -f $@.tmp
 
 define fw_variant
 $(1)-$(2)_DIR := $(BUILD)/cortexm-$(1)-$(2)
 $(1)-$(2)_CFLAGS := $(ARM_COMMON) $(3) -DUUV_NUMERIC=$(NUM_$(2)) -DUUV_TARGET_HAS_FPU=$(4) \
-    -DBOARD_NAME='"$(1)"' $(INC) -Iports/cortexm
+    -DSCENARIO_MAX_EVENTS=$(FW_SCENARIO_EVENTS)u -DBOARD_NAME='"$(1)"' $(INC) -Iports/cortexm
 $(1)-$(2)_LDFLAGS := $(3) -nostdlib -Wl,--gc-sections -Lldscripts -Tldscripts/$(1).ld
 $(1)-$(2)_SRC_O := $$(patsubst %.c,$$($(1)-$(2)_DIR)/obj/%.o,$(SRC_C) $(CORTEXM_PORT_C) $(5))
 $(1)-$(2)_TEST_O := $$(patsubst %.c,$$($(1)-$(2)_DIR)/obj/%.o,$(TEST_C))
+$(1)-$(2)_SIM_O := $$(patsubst %.c,$$($(1)-$(2)_DIR)/obj/%.o,$(FW_SIM_C))
 $(1)-$(2)_FAIL_O := $$(filter-out %/test_harness.o,$$($(1)-$(2)_TEST_O)) \
     $$($(1)-$(2)_DIR)/obj-mustfail/test_harness.o
 
 $$($(1)-$(2)_DIR)/obj/%.o: %.c | $(BUILD)/gen/suites.inc
 	@mkdir -p $$(@D)
-	$(ARM_CC) $$($(1)-$(2)_CFLAGS) -c $$< -o $$@
+	$(ARM_CC) $$($(1)-$(2)_CFLAGS) $$(or $(7),$$(if $$(filter $$<,$(FW_SIZE_C)),-Os)) -c $$< -o $$@
 
 $$($(1)-$(2)_DIR)/obj-mustfail/test_harness.o: tests/unit/test_harness.c
 	@mkdir -p $$(@D)
-	$(ARM_CC) $$($(1)-$(2)_CFLAGS) -DUT_PROVE_FAILURE -c $$< -o $$@
+	$(ARM_CC) $$($(1)-$(2)_CFLAGS) $(7) -DUT_PROVE_FAILURE -c $$< -o $$@
 
 $$($(1)-$(2)_DIR)/obj/tests/harness/runner.o: $(BUILD)/gen/suites.inc
 
@@ -137,21 +167,43 @@ $$($(1)-$(2)_DIR)/unit_tests.elf: $$($(1)-$(2)_SRC_O) $$($(1)-$(2)_TEST_O) ldscr
 $$($(1)-$(2)_DIR)/unit_tests_mustfail.elf: $$($(1)-$(2)_SRC_O) $$($(1)-$(2)_FAIL_O) ldscripts/$(1).ld
 	$(ARM_CC) $$($(1)-$(2)_LDFLAGS) -o $$@ $$(filter %.o,$$^) -lgcc
 
+# One part of the unit tests: its own runner (the part's suite list comes first
+# on the include path), the harness and the part's suites.
+$$($(1)-$(2)_DIR)/obj-part%/runner.o: tests/harness/runner.c $(BUILD)/gen/part%/suites.inc
+	@mkdir -p $$(@D)
+	$(ARM_CC) -I$(BUILD)/gen/part$$* $$($(1)-$(2)_CFLAGS) $(7) -c $$< -o $$@
+
+$$($(1)-$(2)_DIR)/unit_tests_part%.elf: $$($(1)-$(2)_SRC_O) $$($(1)-$(2)_DIR)/obj-part%/runner.o \
+        $$($(1)-$(2)_DIR)/obj/tests/harness/ut.o $$($(1)-$(2)_TEST_O) ldscripts/$(1).ld
+	$(ARM_CC) $$($(1)-$(2)_LDFLAGS) -Wl,-Map=$$(@:.elf=.map) -o $$@ \
+	    $$(filter-out %/tests/harness/runner.o $$($(1)-$(2)_DIR)/obj/tests/unit/%, \
+	        $$(filter %.o,$$^)) \
+	    $$(foreach s,$$(TEST_PART$$*),$$($(1)-$(2)_DIR)/obj/tests/unit/test_$$(s).o) -lgcc
+
+$$($(1)-$(2)_DIR)/uuvsim.elf: $$($(1)-$(2)_SRC_O) $$($(1)-$(2)_SIM_O) ldscripts/$(1).ld
+	$(ARM_CC) $$($(1)-$(2)_LDFLAGS) -Wl,--defsym=STACK_SIZE=$(FW_STACK_BYTES) \
+	    -Wl,-Map=$$(@:.elf=.map) -o $$@ $$(filter %.o,$$^) -lgcc
+
 -include $$(wildcard $$($(1)-$(2)_DIR)/obj/*/*.d $$($(1)-$(2)_DIR)/obj/*/*/*.d \
-    $$($(1)-$(2)_DIR)/obj/*/*/*/*.d)
+    $$($(1)-$(2)_DIR)/obj/*/*/*/*.d $$($(1)-$(2)_DIR)/obj-part*/*.d)
 FW_VARIANTS += $(1)-$(2)
-FW_IMAGES += $$($(1)-$(2)_DIR)/unit_tests.elf
+FW_IMAGES += $$(if $(6),$$(foreach p,$(6),$$($(1)-$(2)_DIR)/unit_tests_part$$(p).elf), \
+    $$($(1)-$(2)_DIR)/unit_tests.elf)
+FW_SIMS += $$($(1)-$(2)_DIR)/uuvsim.elf
 endef
 
 CPU_M3 := -mcpu=cortex-m3 -mthumb -mfloat-abi=soft
 CPU_M4F := -mcpu=cortex-m4 -mthumb -mfpu=fpv4-sp-d16 -mfloat-abi=hard
 CPU_M7 := -mcpu=cortex-m7 -mthumb -mfpu=fpv5-d16 -mfloat-abi=hard
 
-$(eval $(call fw_variant,mps2-an385,fixed,$(CPU_M3),0,ports/cortexm/board_mps2.c))
-$(eval $(call fw_variant,mps2-an386,fixed,$(CPU_M4F),1,ports/cortexm/board_mps2.c))
-$(eval $(call fw_variant,mps2-an386,float,$(CPU_M4F),1,ports/cortexm/board_mps2.c))
-$(eval $(call fw_variant,mps2-an500,fixed,$(CPU_M7),1,ports/cortexm/board_mps2.c))
-$(eval $(call fw_variant,mps2-an500,float,$(CPU_M7),1,ports/cortexm/board_mps2.c))
+$(eval $(call fw_variant,mps2-an385,fixed,$(CPU_M3),0,ports/cortexm/board_mps2.c,,-Os))
+$(eval $(call fw_variant,mps2-an386,fixed,$(CPU_M4F),1,ports/cortexm/board_mps2.c,))
+$(eval $(call fw_variant,mps2-an386,float,$(CPU_M4F),1,ports/cortexm/board_mps2.c,))
+$(eval $(call fw_variant,mps2-an500,fixed,$(CPU_M7),1,ports/cortexm/board_mps2.c,))
+$(eval $(call fw_variant,mps2-an500,float,$(CPU_M7),1,ports/cortexm/board_mps2.c,))
+$(eval $(call fw_variant,netduinoplus2,fixed,$(CPU_M4F),1,ports/cortexm/board_stm32f405.c,))
+$(eval $(call fw_variant,netduinoplus2,float,$(CPU_M4F),1,ports/cortexm/board_stm32f405.c,))
+$(eval $(call fw_variant,lm3s6965evb,fixed,$(CPU_M3),0,ports/cortexm/board_lm3s6965.c,1 2,-Os))
 
 # ---- Host tools (may use libc and libm) -----------------------------------
 
@@ -185,7 +237,7 @@ all: $(foreach v,linux-fixed linux-float,$(BUILD)/$(v)/unit_tests $(BUILD)/$(v)/
 host-all: $(foreach v,$(HOST_VARIANTS),$(BUILD)/$(v)/unit_tests $(BUILD)/$(v)/uuvsim) \
           $(BUILD)/linux-fixed/unit_tests_mustfail
 
-firmware: $(FW_IMAGES) $(BUILD)/cortexm-mps2-an385-fixed/unit_tests_mustfail.elf
+firmware: $(FW_IMAGES) $(FW_SIMS) $(BUILD)/cortexm-mps2-an385-fixed/unit_tests_mustfail.elf
 
 tools: $(HOST_TOOLS)
 
@@ -211,9 +263,7 @@ RUN_ARGS := --scenario scenarios/default.scn --csv out/telemetry.csv \
 
 run: $(BUILD)/linux-float/uuvsim
 	@mkdir -p out
-	$(BUILD)/linux-float/uuvsim $(RUN_ARGS)
-	@$(BUILD)/linux-float/uuvsim $(RUN_ARGS) --quiet --json > out/summary.json.partial && \
-	    mv out/summary.json.partial out/summary.json
+	$(BUILD)/linux-float/uuvsim $(RUN_ARGS) --summary out/summary.json
 	@if command -v gnuplot >/dev/null 2>&1; then \
 	    gnuplot -e "dir='out'" tools/plots.gp && \
 	    echo "plots: out/trajectory.png depth.png speed.png shaft.png currents.png dc_link.png battery.png"; \
@@ -228,6 +278,10 @@ bench: $(BUILD)/linux-fixed/bench $(BUILD)/linux-float/bench
 	@printf '{"fixed": %s, "float": %s}\n' "$$(cat $(BUILD)/bench-fixed.json)" \
 	    "$$(cat $(BUILD)/bench-float.json)" > $(BUILD)/bench.json
 	@echo "written $(BUILD)/bench.json"
+
+# The firmware simulation: qemu-run, qemu-bench and its part of make test.
+include mk/firmware.mk
+include mk/hardening.mk
 
 clean:
 	rm -rf $(BUILD)

@@ -151,6 +151,7 @@ static exec_status init_drive(exec *e) {
     drive_start(&e->drive, &b0);
     e->bat_next = b0;
     (void)speed_command_at(e, 0.0);
+    e->speed_report_rpm = e->speed_rpm;
     drive_speed_command(&e->drive, e->speed_rpm * RPM_TO_RADPS);
     return EXEC_OK;
 }
@@ -265,6 +266,7 @@ void exec_medium_tick(exec *e) {
             overrun(e, &e->count.overruns_slow);
         } else {
             drive_slow_exchange(&e->drive, &e->bat_next, &e->meas);
+            e->speed_report_rpm = e->speed_rpm;
             e->slow_pending = true;
         }
     }
@@ -323,7 +325,7 @@ static void make_report(exec *e) {
     r->cmd[1] = e->cmd.stern_rad;
     r->cmd[2] = e->cmd.bow_port_rad;
     r->cmd[3] = e->cmd.bow_stbd_rad;
-    r->cmd[4] = (e->cfg.plant == EXEC_PLANT_FULL) ? e->speed_rpm : e->cmd.n_rpm;
+    r->cmd[4] = (e->cfg.plant == EXEC_PLANT_FULL) ? e->speed_report_rpm : e->cmd.n_rpm;
     if (e->cfg.plant == EXEC_PLANT_FULL) {
         double n = (e->acc_n > 0u) ? (double)e->acc_n : 1.0;
         r->te_nm = e->acc_te / n;

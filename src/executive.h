@@ -125,6 +125,9 @@ typedef struct {
     drive_segment drive;
     size_t speed_cursor;      /* the medium task's place in the scenario */
     double speed_rpm;         /* its shaft speed command in force */
+    double speed_report_rpm;  /* that command at the last slow boundary, for the record:
+                               * the slow step must not read speed_rpm, which the medium
+                               * task may change while a preempted slow step runs */
     double shaft_start_rpm;   /* [rpm] shaft speed at the start of the slow frame */
     /* Schedule. */
     uint32_t fast_phase;      /* fast steps since the last motor-frame boundary */

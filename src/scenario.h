@@ -22,7 +22,18 @@
 
 #include "models/vessel.h"
 
+/*
+ * Capacity of a scenario's event list (24 bytes each). A build may set a
+ * smaller one (-DSCENARIO_MAX_EVENTS=n): the firmware does, as its RAM is
+ * counted in kilobytes. A longer scenario is refused with a message.
+ */
+#ifndef SCENARIO_MAX_EVENTS
 #define SCENARIO_MAX_EVENTS 256u
+#endif
+
+#if (SCENARIO_MAX_EVENTS < 1) || (SCENARIO_MAX_EVENTS > 65535)
+#error "SCENARIO_MAX_EVENTS must be between 1 and 65535"
+#endif
 
 typedef enum {
     SCN_RUDDER = 0,  /* [rad] */

@@ -69,13 +69,35 @@ run "host check_tables (exhaustive)" pass "$BUILD/tools/check_tables"
 run "host wavetable_data.c = generator" pass "$BUILD/tools/gen_wavetables" --check \
     src/fixedpoint/wavetable_data.c
 
+run "host lint (cppcheck MISRA, clang-tidy)" pass sh tools/lint.sh
+run "host fuzz corpus replay (ASan+UBSan)" pass make --no-print-directory BUILD="$BUILD" fuzz-replay
+run "host 60 s desk simulation (ASan+UBSan)" pass make --no-print-directory BUILD="$BUILD" san-sim
+
 echo "== qemu =="
 for v in $FW_VARIANTS; do
     machine=${v%-*}
-    run "qemu $v unit_tests" pass $(qemu_cmd "$machine" "$BUILD/cortexm-$v/unit_tests.elf")
+    # A machine whose flash cannot hold every suite runs them in parts.
+    for image in "$BUILD/cortexm-$v"/unit_tests.elf "$BUILD/cortexm-$v"/unit_tests_part*.elf; do
+        [ -f "$image" ] || continue
+        name=$(basename "$image" .elf)
+        run "qemu $v $name" pass $(qemu_cmd "$machine" "$image")
+    done
 done
 run "qemu mps2-an385-fixed must-fail" fail \
     $(qemu_cmd mps2-an385 "$BUILD/cortexm-mps2-an385-fixed/unit_tests_mustfail.elf")
+
+# The firmware simulation: each image runs the default scenario under
+# -icount and is compared with the desk simulator of its numeric build.
+echo "== qemu simulation (shift ${FW_TEST_SHIFT:-3}, ${FW_TEST_DURATION:-0.5} s) =="
+for v in $FW_VARIANTS; do
+    machine=${v%-*}
+    num=${v##*-}
+    run "qemu $v simulation" pass sh tools/qemu-sim-test.sh "$machine" "$num" \
+        "$BUILD/cortexm-$v/uuvsim.elf" "$BUILD/linux-$num/uuvsim" "$BUILD/qemu-test/$v"
+done
+run "qemu mps2-an386-fixed overruns, bad input" pass sh tools/qemu-overrun-test.sh \
+    mps2-an386 "$BUILD/cortexm-mps2-an386-fixed/uuvsim_overrun.elf" "$BUILD/linux-fixed/uuvsim" \
+    "$BUILD/qemu-test/overrun"
 
 echo "logs in $logs/"
 echo "$total_pass passed, $total_fail failed"

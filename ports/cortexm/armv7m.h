@@ -31,6 +31,12 @@ static inline void cpu_irq_enable(void) { __asm__ volatile("cpsie i" ::: "memory
 static inline void cpu_wfi(void) { __asm__ volatile("wfi" ::: "memory"); }
 static inline void cpu_barrier(void) { __asm__ volatile("dsb\n\tisb" ::: "memory"); }
 
+static inline uintptr_t cpu_sp(void) {
+    uintptr_t v;
+    __asm__ volatile("mov %0, sp" : "=r"(v));
+    return v;
+}
+
 static inline uint32_t cpu_primask(void) {
     uint32_t v;
     __asm__ volatile("mrs %0, primask" : "=r"(v));

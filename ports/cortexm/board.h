@@ -17,7 +17,7 @@ void board_init(void);
 /* [Hz] clock of SysTick (the processor clock). */
 uint32_t board_systick_hz(void);
 
-/* Free-running up-counter at board_systick_hz(); wraps modulo 2^32. */
+/* A free-running up-counter (its clock is the board's to choose); wraps modulo 2^32. */
 uint32_t board_counter(void);
 
 /* Writes bytes to the machine's first UART (blocking). */

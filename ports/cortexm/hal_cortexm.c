@@ -4,9 +4,15 @@
  *   - medium tick: PendSV, the lowest exception priority, pended by the fast
  *     tick, so the fast tick preempts it;
  *   - background: thread mode, sleeping in WFI between ticks;
- *   - console: semihosting (buffered per line); telemetry: UART0;
+ *   - console: semihosting (buffered per line); telemetry: the board's
+ *     first UART; scenario input: a host file through semihosting;
  *   - exit: semihosting SYS_EXIT_EXTENDED, which carries the status.
+ * A fast tick that is pending again when its handler ends has overrun: it
+ * is counted, and SysTick stops if the program asked for it (see
+ * hal_cortexm.h).
  */
+#include "hal_cortexm.h"
+
 #include "armv7m.h"
 #include "board.h"
 #include "hal/hal.h"
@@ -19,12 +25,15 @@
 static struct {
     bool initialised;
     int32_t console;   /* semihosting handle of ":tt", or -1 */
+    int32_t input;     /* semihosting handle of the scenario input, or -1 */
     char line[128];    /* console buffer, flushed per line */
     size_t line_len;
     hal_ticks_config ticks;
     uint32_t critical_depth;
     uint32_t critical_saved;
-} hal_cm;
+    volatile uint32_t fast_overruns;
+    bool stop_on_overrun;
+} hal_cm = {false, -1, -1, {0}, 0u, {0u, NULL, NULL}, 0u, 0u, 0u, false};
 
 static void hal_cm_init(void) {
     if (!hal_cm.initialised) {
@@ -57,9 +66,29 @@ void hal_telemetry_write(const uint8_t *data, size_t n) {
 }
 
 size_t hal_input_read(uint8_t *buf, size_t n) {
-    (void)buf;
-    (void)n;
-    return 0u;
+    if (hal_cm.input < 0 || n == 0u) {
+        return 0u;
+    }
+    return semihost_read(hal_cm.input, buf, n);
+}
+
+bool hal_cm_input_open(const char *path) {
+    hal_cm_init();
+    hal_cm_input_close();
+    hal_cm.input = semihost_open(path, 1u); /* "rb" */
+    return hal_cm.input >= 0;
+}
+
+void hal_cm_input_close(void) {
+    if (hal_cm.input >= 0) {
+        semihost_close(hal_cm.input);
+        hal_cm.input = -1;
+    }
+}
+
+int32_t hal_cm_cmdline(char *buf, size_t cap) {
+    hal_cm_init();
+    return semihost_cmdline(buf, cap);
 }
 
 uint32_t hal_cycles(void) {
@@ -117,16 +146,47 @@ void hal_wait_for_tick(void) { cpu_wfi(); }
 void SysTick_Handler(void);
 void PendSV_Handler(void);
 
-void SysTick_Handler(void) {
-    if (hal_cm.ticks.fast != NULL) {
-        hal_cm.ticks.fast();
+void hal_cm_fast_stop(void) { SYST_CSR = 0u; }
+
+uint32_t hal_cm_fast_overruns(void) { return hal_cm.fast_overruns; }
+
+void hal_cm_stop_on_overrun(bool stop) { hal_cm.stop_on_overrun = stop; }
+
+/* Kept out of line: the common path of the handler stays short. */
+__attribute__((noinline)) static void fast_overrun(void) {
+    hal_cm.fast_overruns++;
+    if (hal_cm.stop_on_overrun) {
+        SYST_CSR = 0u;
+        SCB_ICSR = ICSR_PENDSTCLR;
     }
 }
 
+/*
+ * The handler starts only after hal_ticks_start() has checked the
+ * configuration, so the callback is set. The empty barrier at the end
+ * keeps every call a call (not a tail jump), so that the handler returns
+ * itself: its return instructions are where a tick ends for the
+ * instruction counts (docs/firmware.md).
+ */
+void SysTick_Handler(void) {
+    hal_cm.ticks.fast();
+    if ((SCB_ICSR & ICSR_PENDSTSET) != 0u) {
+        fast_overrun();
+    }
+    __asm__ volatile("" ::: "memory");
+}
+
+/*
+ * The medium tick's overruns are the executive's to count: the task is
+ * late when it is still busy at its next release, which the fast tick
+ * sees. A pending PendSV here may be that next release, made on time.
+ */
 void PendSV_Handler(void) {
     if (hal_cm.ticks.medium != NULL) {
         hal_cm.ticks.medium();
     }
+    /* An empty barrier: the call stays a call and the handler returns itself. */
+    __asm__ volatile("" ::: "memory");
 }
 
 void hal_exit(int status) {

@@ -38,6 +38,24 @@ size_t semihost_read(int32_t handle, void *data, size_t n) {
     return n - (size_t)not_read;
 }
 
+void semihost_close(int32_t handle) {
+    uint32_t block[1] = {(uint32_t)handle};
+    (void)semihost_call(SH_SYS_CLOSE, block);
+}
+
+int32_t semihost_cmdline(char *buf, size_t cap) {
+    if (cap < 2u) {
+        return -1;
+    }
+    /* The host writes at most block[1] bytes including the NUL and returns the length there. */
+    uint32_t block[2] = {(uint32_t)(uintptr_t)buf, (uint32_t)(cap - 1u)};
+    if (semihost_call(SH_SYS_GET_CMDLINE, block) != 0 || block[1] >= cap) {
+        return -1;
+    }
+    buf[block[1]] = '\0';
+    return (int32_t)block[1];
+}
+
 void semihost_exit(int status) {
     uint32_t block[2] = {SH_ADP_STOPPED_APPLICATION_EXIT, (uint32_t)status};
     for (;;) {

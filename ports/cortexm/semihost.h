@@ -27,6 +27,14 @@ int32_t semihost_open(const char *name, uint32_t mode);
 int32_t semihost_write(int32_t handle, const void *data, size_t n);
 /* Reads up to n bytes; returns the number read. */
 size_t semihost_read(int32_t handle, void *data, size_t n);
+/* Closes a handle from semihost_open. */
+void semihost_close(int32_t handle);
+/*
+ * Copies the command line the emulator was given (QEMU: the arg= values of
+ * -semihosting-config, separated by spaces) into buf, NUL-terminated.
+ * Returns its length, or -1 when there is none or it does not fit.
+ */
+int32_t semihost_cmdline(char *buf, size_t cap);
 __attribute__((noreturn)) void semihost_exit(int status);
 
 #endif /* UUV_SEMIHOST_H */

@@ -8,7 +8,6 @@
 
 #include "armv7m.h"
 #include "hal/hal.h"
-#include "util/fmt.h"
 
 /* Symbols from the linker script. */
 extern uint32_t __data_load__[], __data_start__[], __data_end__[];
@@ -72,12 +71,34 @@ void Reset_Handler(void) {
     hal_exit(0);
 }
 
-void HardFault_Handler(void) {
-    fmt_print("fatal: fault exception (ICSR 0x%08lx)\n", (unsigned long)SCB_ICSR);
+/*
+ * Reports a fault and ends the run. A fault can come at the deepest point
+ * of the stack, so the report is built here in a small buffer rather than
+ * with the formatter, whose frame is larger.
+ */
+static void fault_exit(const char *what) {
+    static const char hex[] = "0123456789abcdef";
+    char line[64];
+    size_t n = 0;
+    for (const char *p = "fatal: "; *p != '\0'; p++) {
+        line[n++] = *p;
+    }
+    for (const char *p = what; *p != '\0' && n < 40u; p++) {
+        line[n++] = *p;
+    }
+    for (const char *p = " (ICSR 0x"; *p != '\0'; p++) {
+        line[n++] = *p;
+    }
+    uint32_t icsr = SCB_ICSR;
+    for (int shift = 28; shift >= 0; shift -= 4) {
+        line[n++] = hex[(icsr >> (unsigned)shift) & 0xFu];
+    }
+    line[n++] = ')';
+    line[n++] = '\n';
+    hal_console_write(line, n);
     hal_exit(3);
 }
 
-void Default_Handler(void) {
-    fmt_print("fatal: unexpected exception (ICSR 0x%08lx)\n", (unsigned long)SCB_ICSR);
-    hal_exit(3);
-}
+void HardFault_Handler(void) { fault_exit("fault exception"); }
+
+void Default_Handler(void) { fault_exit("unexpected exception"); }

@@ -1,0 +1,87 @@
+# Shell functions shared by tools/qemu-bench.sh and tools/qemu-sim-test.sh
+# (sourced, not run): an image's footprint, its worst-case stack, values
+# from a run's summary.json, and runs at decreasing -icount shifts.
+# Needs: FW_DECODE, FW_PLUGIN, FW_STACK (the host tools) in the environment.
+
+ARM_SIZE=${ARM_SIZE:-arm-none-eabi-size}
+ARM_OBJDUMP=${ARM_OBJDUMP:-arm-none-eabi-objdump}
+
+# Bytes each exception entry may push: 8 words, or 26 with the FPU's
+# context, plus 4 of alignment.
+fw_frame_bytes() { # MACHINE
+    case "$1" in
+        mps2-an385 | lm3s6965evb) echo 36 ;;
+        *) echo 108 ;;
+    esac
+}
+
+# fw_flash (code, constants, .data's load image), fw_ram (.data, .bss,
+# stack) and fw_stack_reserved, in bytes.
+fw_sizes() { # IMAGE
+    eval "$("$ARM_SIZE" -A "$1" | awk '
+        $1 == ".text" || $1 == ".ARM.exidx" { flash += $2 }
+        $1 == ".data" { flash += $2; ram += $2 }
+        $1 == ".bss" { ram += $2 }
+        $1 == ".stack" { ram += $2; stack = $2 }
+        END { printf "fw_flash=%d fw_ram=%d fw_stack_reserved=%d\n", flash, ram, stack }')"
+}
+
+# fw_stack_worst: the static worst case (thread, PendSV, SysTick and a
+# fault report nested, with their exception frames); the chains go to
+# $2/stack.txt. Returns 1 when it is unknown.
+fw_stack_static() { # IMAGE OUTDIR MACHINE
+    objdir=$(dirname "$1")/obj
+    # shellcheck disable=SC2046 # one .su file per object
+    "$ARM_OBJDUMP" -d --no-show-raw-insn "$1" |
+        "$FW_STACK" --frame "$(fw_frame_bytes "$3")" --call SysTick_Handler=fw_fast \
+            --call PendSV_Handler=fw_medium Reset_Handler PendSV_Handler SysTick_Handler \
+            HardFault_Handler -- $(find "$objdir" -name '*.su' | sort) >"$2/stack.txt"
+    rc=$?
+    fw_stack_worst=$(awk '$2 == "worst" { print $3 }' "$2/stack.txt")
+    fw_stack_worst=${fw_stack_worst:-0}
+    return $rc
+}
+
+# A value from summary.json: fw_json FILE KEY gives a scalar member,
+# fw_json FILE KEY FIELD a field of an object member ("null" when absent).
+fw_json() {
+    if [ $# -eq 2 ]; then
+        sed -n "s/^ *\"$2\": \"*\([^\",]*\)\"*,*\$/\1/p" "$1" | head -n 1
+    else
+        v=$(sed -n "s/.*\"$2\": {[^}]*\"$3\": \([-0-9.e+]*\).*/\1/p" "$1" | head -n 1)
+        echo "${v:-null}"
+    fi
+}
+
+# Runs at SHIFT, then at each smaller shift until a run has no overrun.
+# Sets fw_overruns_first (at SHIFT), fw_stopped_first (the simulated time
+# it reached), fw_pass_shift (empty when none passed), fw_pass_dir, and
+# fw_last_status (of the last run). Each run goes to OUTBASE/shiftN.
+fw_run_until_pass() { # MACHINE IMAGE SCENARIO DURATION OUTBASE SHIFT
+    fw_pass_shift=""
+    fw_pass_dir=""
+    fw_overruns_first=""
+    fw_stopped_first=""
+    s=$6
+    while [ "$s" -ge 0 ]; do
+        dir=$5/shift$s
+        sh "$(dirname "$0")/qemu-run.sh" "$1" "$2" "$3" "$4" "$dir" "$s" "$FW_DECODE" \
+            "$FW_PLUGIN" >"$5.shift$s.log" 2>&1
+        fw_last_status=$?
+        if [ ! -f "$dir/summary.json" ]; then
+            return 1
+        fi
+        o=$(fw_json "$dir/summary.json" overruns)
+        if [ -z "$fw_overruns_first" ]; then
+            fw_overruns_first=$o
+            fw_stopped_first=$(fw_json "$dir/summary.json" sim_time_s)
+        fi
+        if [ "$o" = 0 ] && [ $fw_last_status -eq 0 ]; then
+            fw_pass_shift=$s
+            fw_pass_dir=$dir
+            return 0
+        fi
+        s=$((s - 1))
+    done
+    return 0
+}
