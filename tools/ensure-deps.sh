@@ -14,6 +14,9 @@ need gnuplot gnuplot-nox
 need cppcheck cppcheck
 need clang-tidy clang-tidy
 need python3 python3
+# clang's sanitizer and libFuzzer runtimes (the fuzz replay links them).
+fuzzer_rt=$(clang -print-file-name=libclang_rt.fuzzer-x86_64.a 2>/dev/null)
+[ -e "$fuzzer_rt" ] || missing="$missing libclang-rt-14-dev"
 
 [ -z "$missing" ] && exit 0
 
