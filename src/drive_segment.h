@@ -54,6 +54,7 @@
 #include "models/power_stage.h"
 #include "models/propeller.h"
 #include "models/pwm.h"
+#include "models/pwm_rt.h"
 #include "uuv_config.h"
 
 /* Inverter model (the paper's layered model). */
@@ -137,54 +138,79 @@ typedef enum {
 typedef struct {
     int64_t v_cap[2];  /* capacitor voltages a, b (c = -a - b) */
     int64_t v_dc;      /* DC-link voltage */
-    int64_t v_dc_sq;   /* its square, Q3.28 * Q3.28 >> 28 */
-    uint32_t n;        /* fast steps summed */
     q31_t i_mark[2];   /* the fast motor currents a, b at the boundary, Q31 of 256 A */
+    int32_t v_mark[2]; /* capacitor voltages at the boundary (sampled coupling), Q3.28 */
+    int64_t filt_mark[2]; /* filtered capacitor voltages at the boundary, Q3.28 << 16 */
+    uint32_t sat;      /* the fast models' saturation count at the boundary */
 } drive_frame_sums;
+
+/* What the motor task publishes for the next frame, latched at its boundary. */
+typedef struct {
+    pwm_rt_ramp ramp;          /* references of the real-time modulator */
+    int32_t e[2];              /* EMF at the frame start, Q3.28 of 1024 V */
+    int32_t de[2];             /* its change per fast step (FOH, DERIV) */
+    q31_t corr[2];             /* motor minus fast current at the last frame end */
+    bool cmd_new;              /* a new command for the general modulators */
+    drive_control_out_q cmd;
+} drive_latch;
+
+/* The slow frame's raw sums, handed from the motor task to the background. */
+typedef struct {
+    int64_t v_dc, v_dc_sq, w, te, i_sq, p_mech;
+    uint32_t fast_n, medium_n;
+    q31_t w_filt, w_end;       /* filtered and final shaft speed, Q31 of 512 rad/s */
+    int32_t v_dc_end;          /* Q3.28 of 1024 V */
+    drive_control_out_q cmd;   /* the command in force at the boundary */
+    uint32_t saturations;
+} drive_slow_sums;
 
 typedef struct {
     drive_config cfg;
-    /* Fast segment. */
+    bool plain;                 /* the real-time path: switching, ZOH or staggered, mean or sample */
+    /* Fast segment: the real-time modulator and power stage (switching), or the general ones. */
+    pwm_rt rt;
+    int32_t s[3];               /* leg states of the last step (switching) */
     pwm_q pwm;
     power_stage_q ps;
     inverter_avg_q avg;
-    pwm_q *mod;                 /* the modulator in use (pwm, or the averaged one's) */
+    pwm_q *mod;                 /* the general modulator in use (event or averaged) */
     power_stage_q *stage;       /* the power stage in use (ps, or the averaged one's) */
-    pwm_out_q pout;             /* the modulator's last step */
-    power_stage_in_q in;        /* duties, motor currents, battery: the fast inputs */
+    pwm_out_q pout;             /* the general modulator's last step */
+    power_stage_in_q in;        /* duties, motor currents (Q15), battery: the fast inputs */
     /* The motor's fast companion (see drive_segment.h): currents a, b, EMF. */
     q31_t i_fast[2];            /* Q31 of 256 A */
     int32_t e[2];               /* Q3.28 of 1024 V, the EMF in force */
     int32_t e_step[2];          /* its change per fast step (FOH, DERIV) */
-    bool e_moves;               /* the coupling extrapolates e (FOH, DERIV) */
     int32_t k_mant;             /* a_ss h1 * 32 (Q31 current step per Q3.28 volt) as */
     uint32_t k_shift;           /* mantissa and right shift */
     int32_t e_mant;             /* 1 / (k_l N) as mantissa ... */
     uint32_t e_shift;           /* ... and shift: Q3.28 volts per Q31 current change */
     int64_t filt[2];            /* filtered capacitor voltages (COUPLE_FILTER), Q3.28 << 16 */
     uint32_t filt_k;            /* filter gain per fast step, Q16 */
+    q31_t k_deriv;              /* EMF rotation per fast step per unit frequency: 2 pi 128 Hz T / sqrt 3 */
     drive_frame_sums sums;      /* the frame being summed */
     /* Buffers between the fast step and the motor task. */
     drive_frame_sums medium_in; /* published at the boundary, read by the motor task */
-    int32_t out_e[2];           /* EMF for the next frame, published by the task */
-    int32_t out_de[2];          /* its change per fast step */
-    q31_t out_corr[2];          /* motor current minus fast current at the frame end */
-    bool ctl_new;               /* a controller output waits in ctl_out */
-    drive_control_out_q ctl_out;
-    /* Fast-medium and slow-medium segments. */
+    drive_latch out;            /* written by the motor task, latched at the next boundary */
+    /* Fast-medium segment: the motor. */
     induction_motor_q motor;
     induction_motor_out_q mout;
     q31_t i_prev[2];            /* motor currents at the frame start */
     int32_t e_prev[2];          /* EMF of the previous frame (FOH) */
-    drive_control_params ctl_params; /* the controller's parameters at its frame */
+    uint32_t ref_ph;            /* reference phase at the start of the next frame to ramp */
+    drive_control_out_q cmd;    /* the controller command in force */
+    /* Slow-medium segment: the controller, its own task. */
+    drive_control_params ctl_params;
     drive_control_q ctl;
-    drive_control_in_q ctl_in;
-    drive_control_out_q ctl_last; /* the controller output in force (telemetry) */
+    drive_control_in_q ctl_in;  /* latched by the motor task at the controller's release */
+    drive_control_out_q ctl_out; /* written by the controller task */
+    bool ctl_done;              /* ctl_out holds a result not yet taken */
+    uint32_t ctl_sat;           /* the controller's saturation count after its last step */
+    uint32_t ctl_sat_taken;     /* ... as the motor task took it with the result */
     q31_t speed_cmd;            /* Q31 of 512 rad/s */
     /* Slow sums, kept by the motor task. */
-    int64_t slow_v_dc, slow_v_dc_sq, slow_w, slow_te, slow_i_sq;
-    int64_t slow_p_mech;        /* sum of te * w, Q31 * Q31 >> 31 (of 512 * 512 W) */
-    uint32_t slow_fast_n, slow_medium_n;
+    drive_slow_sums slow;       /* the slow frame being summed */
+    drive_slow_sums slow_out;   /* the last slow frame's, for the background */
     q31_t w_filt;               /* filtered shaft speed (COUPLE_FILTER) */
     ps_battery_q battery_next;  /* battery companion waiting for the next slow boundary */
     bool battery_new;
@@ -197,13 +223,36 @@ typedef struct {
 typedef struct {
     float v_cap[2];   /* [V] capacitor voltages a, b summed over the frame */
     float v_dc;       /* [V] summed */
-    float v_dc_sq;    /* [V^2] summed */
-    uint32_t n;
     float i_mark[2];  /* [A] fast motor currents at the boundary */
+    float v_mark[2];  /* [V] capacitor voltages at the boundary */
+    float filt_mark[2]; /* [V] filtered capacitor voltages at the boundary */
+    uint32_t sat;     /* the fast models' saturation count at the boundary */
 } drive_frame_sums;
 
 typedef struct {
+    pwm_rt_ramp ramp;
+    float e[2];                /* [V] */
+    float de[2];               /* [V per fast step] */
+    float corr[2];             /* [A] */
+    bool cmd_new;
+    drive_control_out_f32 cmd;
+} drive_latch;
+
+typedef struct {
+    /* In double: one slow frame holds up to 50000 fast steps. */
+    double v_dc, v_dc_sq, w, te, i_sq, p_mech;
+    uint32_t fast_n, medium_n;
+    float w_filt, w_end;       /* [rad/s] */
+    float v_dc_end;            /* [V] */
+    drive_control_out_f32 cmd;
+    uint32_t saturations;
+} drive_slow_sums;
+
+typedef struct {
     drive_config cfg;
+    bool plain;
+    pwm_rt rt;
+    int32_t s[3];
     pwm_f32 pwm;
     power_stage_f32 ps;
     inverter_avg_f32 avg;
@@ -214,28 +263,28 @@ typedef struct {
     float i_fast[2];            /* [A] */
     float e[2];                 /* [V] */
     float e_step[2];            /* [V per fast step] */
-    bool e_moves;               /* the coupling extrapolates e (FOH, DERIV) */
     float k_l;                  /* [A/V per fast step] a_ss h1 */
     float e_per_di;             /* [V/A] 1 / (a_ss h2) */
     float filt[2];              /* [V] */
     float filt_k;
+    float k_deriv;              /* [1/Hz] 2 pi T / sqrt 3 */
     drive_frame_sums sums;
     drive_frame_sums medium_in;
-    float out_e[2], out_de[2], out_corr[2];
-    bool ctl_new;
-    drive_control_out_f32 ctl_out;
+    drive_latch out;
     induction_motor_f32 motor;
     induction_motor_out_f32 mout;
     float i_prev[2];
     float e_prev[2];
+    uint32_t ref_ph;
+    drive_control_out_f32 cmd;
     drive_control_params ctl_params;
     drive_control_f32 ctl;
     drive_control_in_f32 ctl_in;
-    drive_control_out_f32 ctl_last;
+    drive_control_out_f32 ctl_out;
+    bool ctl_done;
+    uint32_t ctl_sat, ctl_sat_taken;
     float speed_cmd;            /* [rad/s] */
-    /* Slow sums in double: one frame holds up to 50000 fast steps. */
-    double slow_v_dc, slow_v_dc_sq, slow_w, slow_te, slow_i_sq, slow_p_mech;
-    uint32_t slow_fast_n, slow_medium_n;
+    drive_slow_sums slow, slow_out;
     float w_filt;
     ps_battery_f32 battery_next;
     bool battery_new;
@@ -253,33 +302,42 @@ void drive_fast_tick(drive_segment *d);
 
 /*
  * The motor-frame boundary, called from the fast tick, in two halves: the
- * latch takes the outputs the motor task published (when it has finished),
- * the publish hands the frame's sums to the next motor task. Without
- * staggering both happen at the boundary, latch first; with staggering the
- * latch comes half a frame after the publish.
+ * latch takes what the motor task published (the next frame's reference
+ * ramps, EMF and current correction), the publish hands the frame's sums to
+ * the next motor task. Without staggering both happen at the boundary,
+ * latch first; with staggering the latch comes half a frame after the
+ * publish. Both are a few copies: the motor task prepares everything.
  */
 void drive_medium_latch(drive_segment *d);
 void drive_medium_publish(drive_segment *d, bool slow_boundary);
 
-/* The motor task: one motor step, the controller when control_due. */
-void drive_medium_task(drive_segment *d, bool control_due);
-
 /*
- * Sets the battery companion and the speed command before the first tick.
+ * The motor task: one motor step, the next frame's references and EMF.
+ * When control_due, it takes the controller's last result as the command
+ * (the controller task released one control frame earlier must be done:
+ * drive_control_pending() says if it is not) and latches the controller's
+ * next inputs. When slow_boundary, it hands the slow frame's sums over.
  */
+void drive_medium_task(drive_segment *d, bool control_due, bool slow_boundary);
+
+/* The controller task, released by the motor task at each control frame. */
+void drive_control_task(drive_segment *d);
+
+/* Sets the battery companion and the speed command before the first tick. */
 void drive_start(drive_segment *d, const drive_battery *battery);
 
-/* Sets the shaft speed command [rad/s]; the motor task calls it before a controller step. */
+/* Sets the shaft speed command [rad/s]; the controller task's caller sets it before each step. */
 void drive_speed_command(drive_segment *d, double speed_radps);
 
 /*
- * The slow-frame exchange, called by the motor task released at a slow
- * boundary: writes the measurements of the slow frame that just ended and
- * takes the battery companion the slow segment computed, which the fast
- * step applies from the next slow boundary on, so that one companion holds
- * over each whole slow frame.
+ * The slow segment's side, in the background after a slow boundary: the
+ * measurements of the slow frame that ended (converted to SI here, not in
+ * the motor task), and the battery companion for the next slow frame,
+ * which the fast step applies from the next slow boundary on, so that one
+ * companion holds over each whole slow frame.
  */
-void drive_slow_exchange(drive_segment *d, const drive_battery *next, drive_slow_meas *meas);
+void drive_slow_measure(const drive_segment *d, drive_slow_meas *meas);
+void drive_battery_next(drive_segment *d, const drive_battery *next);
 
 /* The fast signals now, in SI units, for the trace. */
 void drive_trace(const drive_segment *d, drive_trace_row *row);

@@ -57,9 +57,8 @@ drive_status drive_init(drive_segment *d, const drive_config *cfg, const propell
         d->stage = &d->avg.stage;
         mod_ns = cfg->fast_ns / cfg->averaged_substeps;
     } else {
-        const pwm_params *pp =
-            (cfg->inverter == DRIVE_INVERTER_EVENT) ? &pwm_located : &pwm_sampled;
-        if (pwm_init_q(&d->pwm, pp, cfg->fast_ns) != PWM_OK ||
+        if (pwm_init_q(&d->pwm, &pwm_located, cfg->fast_ns) != PWM_OK ||
+            pwm_rt_init(&d->rt, &pwm_sampled, cfg->fast_ns) != PWM_OK ||
             power_stage_init_q(&d->ps, &power_stage_params_default, cfg->fast_ns,
                                cfg->v_dc0_v) != PS_OK) {
             return DRIVE_ERR_MODEL;
@@ -86,7 +85,11 @@ drive_status drive_init(drive_segment *d, const drive_config *cfg, const propell
     }
     /* First-order filter gain per fast step: step / frame, Q16. */
     d->filt_k = (uint32_t)(65536u / cfg->fast_per_medium);
-    d->e_moves = (cfg->down == COUPLE_FOH || cfg->down == COUPLE_DERIV);
+    d->k_deriv = fp_from_f64_q31(6.283185307179586 * DRIVE_BASE_FREQ_HZ * fast_s /
+                                 1.7320508075688772);
+    d->plain = (cfg->inverter == DRIVE_INVERTER_SWITCHING) &&
+               (cfg->down == COUPLE_ZOH || cfg->down == COUPLE_STAGGER) &&
+               (cfg->up != COUPLE_FILTER);
     return DRIVE_OK;
 }
 
@@ -107,44 +110,36 @@ static inline q31_t fast_current_step(int32_t dv, int32_t mant, uint32_t shift) 
     return (q31_t)fp_shr_floor_i64(p, shift);
 }
 
-/*
- * What every fast step does after the power stage: the motor's fast
- * companion di = a_ss h (v - e) with the new capacitor voltages, and the
- * frame sums. The EMF moves only in the extrapolating modes (FOH, DERIV:
- * e_step is zero otherwise, so skipping the addition changes nothing).
- */
-static inline void fast_companion_and_sums(drive_segment *d, const power_stage_q *ps) {
-    const int32_t va = ps->ph[0].v_c;
-    const int32_t vb = ps->ph[1].v_c;
-    const int32_t vdc = ps->v_dc;
-    int32_t ea = d->e[0];
-    int32_t eb = d->e[1];
-    if (d->e_moves) {
-        ea += d->e_step[0];
-        eb += d->e_step[1];
-        d->e[0] = ea;
-        d->e[1] = eb;
-    }
-    const q31_t ia = d->i_fast[0] + fast_current_step(va - ea, d->k_mant, d->k_shift);
-    const q31_t ib = d->i_fast[1] + fast_current_step(vb - eb, d->k_mant, d->k_shift);
-    d->i_fast[0] = ia;
-    d->i_fast[1] = ib;
-    d->in.i_motor[0] = fp_narrow_q15(ia);
-    d->in.i_motor[1] = fp_narrow_q15(ib);
-    d->sums.v_cap[0] += va;
-    d->sums.v_cap[1] += vb;
-    d->sums.v_dc += vdc;
-    /* vdc^2 >= 0: a plain shift of a non-negative value. */
-    d->sums.v_dc_sq += ((int64_t)vdc * (int64_t)vdc) >> 28;
-    d->sums.n++;
+/* The companion current in the power stage's Q3.28 (of 256 A): Q31 / 8, floored. */
+static inline int32_t stage_current(q31_t i) {
+    return fp_shr_floor_i32(i, 3u);
 }
 
-void drive_fast_tick(drive_segment *d) {
+/*
+ * The real-time step (switching inverter, held EMF, mean or sampled
+ * coupling): modulator, power stage, the motor's fast companion and the
+ * frame sums, nothing else.
+ */
+static inline void fast_tick_plain(drive_segment *d) {
+    power_stage_q *ps = &d->ps;
+    pwm_rt_step(&d->rt, d->s);
+    ps_fast_step_q(ps, &d->in.battery, d->s, stage_current(d->i_fast[0]),
+                   stage_current(d->i_fast[1]));
+    const int32_t va = ps->ph[0].v_c;
+    const int32_t vb = ps->ph[1].v_c;
+    d->i_fast[0] += fast_current_step(va - d->e[0], d->k_mant, d->k_shift);
+    d->i_fast[1] += fast_current_step(vb - d->e[1], d->k_mant, d->k_shift);
+    d->sums.v_cap[0] += va;
+    d->sums.v_cap[1] += vb;
+    d->sums.v_dc += ps->v_dc;
+}
+
+/* Every other configuration: the general modulators, a moving EMF, the filter coupling. */
+static void fast_tick_general(drive_segment *d) {
     if (d->cfg.inverter == DRIVE_INVERTER_SWITCHING) {
-        /* The real-time path: modulator and power stage fused (power_stage_fast.h). */
-        ps_fast_step_q(&d->pwm, &d->ps, &d->in.battery, d->in.i_motor[0], d->in.i_motor[1],
-                       d->pout.state);
-        fast_companion_and_sums(d, &d->ps);
+        pwm_rt_step(&d->rt, d->s);
+        ps_fast_step_q(&d->ps, &d->in.battery, d->s, stage_current(d->i_fast[0]),
+                       stage_current(d->i_fast[1]));
     } else {
         if (d->cfg.inverter == DRIVE_INVERTER_AVERAGED) {
             inverter_avg_step_q(&d->avg, &d->in);
@@ -155,33 +150,50 @@ void drive_fast_tick(drive_segment *d) {
             d->in.duty[2] = d->pout.duty[2];
             power_stage_step_q(&d->ps, &d->in);
         }
-        fast_companion_and_sums(d, d->stage);
     }
+    const power_stage_q *ps = d->stage;
+    const int32_t va = ps->ph[0].v_c;
+    const int32_t vb = ps->ph[1].v_c;
+    /* The EMF moves in the extrapolating modes (e_step is zero otherwise). */
+    d->e[0] += d->e_step[0];
+    d->e[1] += d->e_step[1];
+    d->i_fast[0] += fast_current_step(va - d->e[0], d->k_mant, d->k_shift);
+    d->i_fast[1] += fast_current_step(vb - d->e[1], d->k_mant, d->k_shift);
+    d->in.i_motor[0] = fp_narrow_q15(d->i_fast[0]);
+    d->in.i_motor[1] = fp_narrow_q15(d->i_fast[1]);
+    d->sums.v_cap[0] += va;
+    d->sums.v_cap[1] += vb;
+    d->sums.v_dc += ps->v_dc;
     if (d->cfg.up == COUPLE_FILTER) {
-        const int32_t va = d->stage->ph[0].v_c;
-        const int32_t vb = d->stage->ph[1].v_c;
         d->filt[0] += ((int64_t)va * 65536 - d->filt[0]) * (int64_t)d->filt_k / 65536;
         d->filt[1] += ((int64_t)vb * 65536 - d->filt[1]) * (int64_t)d->filt_k / 65536;
     }
 }
 
-void drive_medium_latch(drive_segment *d) {
-    /* The EMF for this frame; extrapolated modes start 1.5 frames after the
-     * centre of the frame it was computed from, half a step early. */
-    int64_t ahead = 3 * (int64_t)d->cfg.fast_per_medium / 2 - 1;
-    for (int x = 0; x < 2; x++) {
-        d->i_fast[x] = fp_sat_q31((int64_t)d->i_fast[x] + d->out_corr[x]);
-        d->out_corr[x] = 0;
-        d->e_step[x] = d->out_de[x];
-        d->e[x] = (int32_t)fp_sat_q31((int64_t)d->out_e[x] + (int64_t)d->out_de[x] * ahead);
+void drive_fast_tick(drive_segment *d) {
+    if (d->plain) {
+        fast_tick_plain(d);
+    } else {
+        fast_tick_general(d);
     }
-    d->in.i_motor[0] = fp_narrow_q15(d->i_fast[0]);
-    d->in.i_motor[1] = fp_narrow_q15(d->i_fast[1]);
-    d->in.i_motor[2] = fp_sat_q15(-(int32_t)d->in.i_motor[0] - (int32_t)d->in.i_motor[1]);
-    if (d->ctl_new) {
-        pwm_command_inc_q(d->mod, d->ctl_out.m, d->ctl_out.phase_inc);
-        d->ctl_last = d->ctl_out;
-        d->ctl_new = false;
+}
+
+void drive_medium_latch(drive_segment *d) {
+    const drive_latch *o = &d->out;
+    pwm_rt_apply(&d->rt, &o->ramp);
+    d->i_fast[0] += o->corr[0];
+    d->i_fast[1] += o->corr[1];
+    d->e[0] = o->e[0];
+    d->e[1] = o->e[1];
+    if (!d->plain) {
+        d->e_step[0] = o->de[0];
+        d->e_step[1] = o->de[1];
+        d->in.i_motor[0] = fp_narrow_q15(d->i_fast[0]);
+        d->in.i_motor[1] = fp_narrow_q15(d->i_fast[1]);
+        if (d->out.cmd_new) {
+            pwm_command_inc_q(d->mod, o->cmd.m, o->cmd.phase_inc);
+            d->out.cmd_new = false;
+        }
     }
 }
 
@@ -195,23 +207,30 @@ void drive_medium_publish(drive_segment *d, bool slow_boundary) {
             d->battery_new = false;
         }
     }
-    d->sums.i_mark[0] = d->i_fast[0];
-    d->sums.i_mark[1] = d->i_fast[1];
-    d->medium_in = d->sums;
-    if (d->cfg.up == COUPLE_SAMPLE) {
-        /* The boundary values, as if held over the frame. */
-        d->medium_in.v_cap[0] = (int64_t)d->stage->ph[0].v_c * d->sums.n;
-        d->medium_in.v_cap[1] = (int64_t)d->stage->ph[1].v_c * d->sums.n;
-    } else if (d->cfg.up == COUPLE_FILTER) {
-        d->medium_in.v_cap[0] = fp_shr_round_i64(d->filt[0], 16u) * d->sums.n;
-        d->medium_in.v_cap[1] = fp_shr_round_i64(d->filt[1], 16u) * d->sums.n;
+    drive_frame_sums *m = &d->medium_in;
+    m->v_cap[0] = d->sums.v_cap[0];
+    m->v_cap[1] = d->sums.v_cap[1];
+    m->v_dc = d->sums.v_dc;
+    m->i_mark[0] = d->i_fast[0];
+    m->i_mark[1] = d->i_fast[1];
+    m->v_mark[0] = d->stage->ph[0].v_c;
+    m->v_mark[1] = d->stage->ph[1].v_c;
+    if (d->cfg.up == COUPLE_FILTER) {
+        m->filt_mark[0] = d->filt[0];
+        m->filt_mark[1] = d->filt[1];
     }
-    d->sums = (drive_frame_sums){{0, 0}, 0, 0, 0u, {0, 0}};
+    m->sat = d->stage->sat_count;
+    d->sums.v_cap[0] = 0;
+    d->sums.v_cap[1] = 0;
+    d->sums.v_dc = 0;
 }
 
 /*
  * The EMF of the frame just integrated and its change per fast step for
- * the extrapolating modes (see drive_segment.h), Q3.28 of 1024 V.
+ * the extrapolating modes (see drive_segment.h), Q3.28 of 1024 V; the
+ * value published is the one at the next frame's first step: extrapolated
+ * modes start 1.5 frames after the centre of the frame it was computed
+ * from, half a step early.
  */
 static void emf_update(drive_segment *d, const q31_t v_mean[2], const q31_t i_end[2]) {
     int32_t e[2];
@@ -227,94 +246,136 @@ static void emf_update(drive_segment *d, const q31_t v_mean[2], const q31_t i_en
         }
     } else if (d->cfg.down == COUPLE_DERIV) {
         /* de/dt = w_s (e_c - e_b) / sqrt 3 for phase a, (e_a - e_c) / sqrt 3 for b. */
-        double w_step = 6.283185307179586 * (double)d->ctl_last.freq / Q31_ONE *
-                        DRIVE_BASE_FREQ_HZ * 1e-9 * (double)d->cfg.fast_ns / 1.7320508075688772;
-        q31_t g = fp_from_f64_q31(w_step);
+        q31_t g = fp_mul_q31(d->cmd.freq, d->k_deriv);
         de[0] = (int32_t)fp_shr_round_i64(((int64_t)-e[0] - 2 * (int64_t)e[1]) * g, 31u);
         de[1] = (int32_t)fp_shr_round_i64((2 * (int64_t)e[0] + (int64_t)e[1]) * g, 31u);
     }
+    int64_t ahead = 3 * (int64_t)d->cfg.fast_per_medium / 2 - 1;
     for (int x = 0; x < 2; x++) {
-        d->out_e[x] = e[x];
-        d->out_de[x] = de[x];
+        d->out.e[x] = (int32_t)fp_sat_q31((int64_t)e[x] + (int64_t)de[x] * ahead);
+        d->out.de[x] = de[x];
         d->e_prev[x] = e[x];
     }
 }
 
-void drive_medium_task(drive_segment *d, bool control_due) {
+/* The slow frame's sums, one motor frame at a time. */
+static void slow_sums_add(drive_segment *d, const drive_frame_sums *s, const q31_t i_end[2]) {
+    drive_slow_sums *w = &d->slow;
+    int64_t n = (int64_t)d->cfg.fast_per_medium;
+    /* Frame mean of v_dc (Q3.28) and its square: the ripple's variance, about
+     * 1e-6 of the square, is left out of the battery's power. */
+    int64_t vdc_mean = s->v_dc / n;
+    w->v_dc += s->v_dc;
+    w->v_dc_sq += fp_shr_floor_i64(vdc_mean * vdc_mean, 28u) * n;
+    w->fast_n += d->cfg.fast_per_medium;
+    w->w += d->mout.w;
+    w->te += d->mout.te;
+    q15_t i15[3] = {fp_narrow_q15(i_end[0]), fp_narrow_q15(i_end[1]),
+                    fp_narrow_q15(d->mout.i_c)};
+    w->i_sq += (int64_t)i15[0] * i15[0] + (int64_t)i15[1] * i15[1] + (int64_t)i15[2] * i15[2];
+    w->p_mech += fp_shr_round_i64((int64_t)d->mout.te * (int64_t)d->mout.w, 31u);
+    w->medium_n++;
+    if (d->cfg.up == COUPLE_FILTER) {
+        /* Time constant: the slow frame. */
+        d->w_filt += (q31_t)(((int64_t)d->mout.w - d->w_filt) / (int64_t)d->cfg.medium_per_slow);
+    }
+}
+
+void drive_medium_task(drive_segment *d, bool control_due, bool slow_boundary) {
     const drive_frame_sums *s = &d->medium_in;
-    uint32_t n = (s->n > 0u) ? s->n : 1u;
+    uint32_t n = d->cfg.fast_per_medium;
     uint32_t sat = 0u;
     /* Q3.28 sums to Q31 means: three bits up. */
     induction_motor_in_q min;
-    min.v_a = mean_q31(s->v_cap[0], 3u, n, &sat);
-    min.v_b = mean_q31(s->v_cap[1], 3u, n, &sat);
+    if (d->cfg.up == COUPLE_AVG) {
+        min.v_a = mean_q31(s->v_cap[0], 3u, n, &sat);
+        min.v_b = mean_q31(s->v_cap[1], 3u, n, &sat);
+    } else if (d->cfg.up == COUPLE_SAMPLE) {
+        min.v_a = fp_sat_cnt_q31((int64_t)s->v_mark[0] * 8, &sat);
+        min.v_b = fp_sat_cnt_q31((int64_t)s->v_mark[1] * 8, &sat);
+    } else {
+        min.v_a = fp_sat_cnt_q31(fp_shr_round_i64(s->filt_mark[0], 13u), &sat);
+        min.v_b = fp_sat_cnt_q31(fp_shr_round_i64(s->filt_mark[1], 13u), &sat);
+    }
     min.v_c = fp_sat_q31(-(int64_t)min.v_a - (int64_t)min.v_b);
     induction_motor_step_q(&d->motor, &min, &d->mout);
     q31_t i_end[2] = {d->mout.i_a, d->mout.i_b};
     q31_t v_mean[2] = {min.v_a, min.v_b};
     emf_update(d, v_mean, i_end);
     for (int x = 0; x < 2; x++) {
-        d->out_corr[x] = fp_sat_q31((int64_t)i_end[x] - s->i_mark[x]);
+        d->out.corr[x] = fp_sat_q31((int64_t)i_end[x] - s->i_mark[x]);
         d->i_prev[x] = i_end[x];
     }
-    /* Slow sums. */
-    d->slow_v_dc += s->v_dc;
-    d->slow_v_dc_sq += s->v_dc_sq;
-    d->slow_fast_n += s->n;
-    d->slow_w += d->mout.w;
-    d->slow_te += d->mout.te;
-    q15_t i15[3] = {fp_narrow_q15(i_end[0]), fp_narrow_q15(i_end[1]),
-                    fp_narrow_q15(d->mout.i_c)};
-    d->slow_i_sq += (int64_t)i15[0] * i15[0] + (int64_t)i15[1] * i15[1] +
-                    (int64_t)i15[2] * i15[2];
-    d->slow_p_mech += fp_shr_round_i64((int64_t)d->mout.te * (int64_t)d->mout.w, 31u);
-    d->slow_medium_n++;
-    if (d->cfg.up == COUPLE_FILTER) {
-        /* Time constant: the slow frame. */
-        d->w_filt += (q31_t)(((int64_t)d->mout.w - d->w_filt) / (int64_t)d->cfg.medium_per_slow);
-    }
+    slow_sums_add(d, s, i_end);
     if (control_due) {
+        /* The controller's last result becomes the command; its next inputs are latched. */
+        if (d->ctl_done) {
+            d->cmd = d->ctl_out;
+            d->ctl_sat_taken = d->ctl_sat;
+            d->ctl_done = false;
+            d->out.cmd = d->cmd;
+            d->out.cmd_new = true;
+        }
         d->ctl_in.speed_cmd = d->speed_cmd;
         d->ctl_in.w = d->mout.w;
         d->ctl_in.i_a = i_end[0];
         d->ctl_in.i_b = i_end[1];
         d->ctl_in.i_c = d->mout.i_c;
         d->ctl_in.vdc = mean_q31(s->v_dc, 3u, n, &sat);
-        drive_control_step_q(&d->ctl, &d->ctl_in, &d->ctl_out);
-        d->ctl_new = true;
+    }
+    /* The next frame's references: exact at both ends, the chord between. */
+    if (d->cfg.inverter == DRIVE_INVERTER_SWITCHING) {
+        pwm_rt_ramp_q(&d->out.ramp, d->cmd.m, d->ref_ph, d->cmd.phase_inc, n);
+        d->ref_ph += d->cmd.phase_inc * n;
     }
     d->ps_clamps += sat;
+    if (slow_boundary) {
+        drive_slow_sums *w = &d->slow;
+        w->w_filt = d->w_filt;
+        w->w_end = d->mout.w;
+        w->v_dc_end = d->stage->v_dc;
+        w->cmd = d->cmd;
+        w->saturations = s->sat + d->pwm.sat_count + d->avg.mod.sat_count + d->motor.sat_count +
+                         d->ctl_sat_taken + d->ps_clamps;
+        d->slow_out = *w;
+        *w = (drive_slow_sums){0};
+    }
 }
 
-void drive_slow_exchange(drive_segment *d, const drive_battery *next, drive_slow_meas *meas) {
+void drive_control_task(drive_segment *d) {
+    drive_control_step_q(&d->ctl, &d->ctl_in, &d->ctl_out);
+    d->ctl_sat = d->ctl.sat_count;
+    d->ctl_done = true;
+}
+
+void drive_slow_measure(const drive_segment *d, drive_slow_meas *meas) {
+    const drive_slow_sums *w = &d->slow_out;
     meas->battery = d->bat_done;
-    double nf = (d->slow_fast_n > 0u) ? (double)d->slow_fast_n : 1.0;
-    double nm = (d->slow_medium_n > 0u) ? (double)d->slow_medium_n : 1.0;
+    double nf = (w->fast_n > 0u) ? (double)w->fast_n : 1.0;
+    double nm = (w->medium_n > 0u) ? (double)w->medium_n : 1.0;
     double medium_s = 1e-9 * (double)d->cfg.fast_ns * (double)d->cfg.fast_per_medium;
-    meas->v_dc_mean_v = (double)d->slow_v_dc / nf / Q28_ONE * DRIVE_BASE_VOLTAGE_V;
-    meas->v_dc_sq_mean_v2 = (double)d->slow_v_dc_sq / nf / Q28_ONE * DRIVE_BASE_VOLTAGE_V *
+    meas->v_dc_mean_v = (double)w->v_dc / nf / Q28_ONE * DRIVE_BASE_VOLTAGE_V;
+    meas->v_dc_sq_mean_v2 = (double)w->v_dc_sq / nf / Q28_ONE * DRIVE_BASE_VOLTAGE_V *
                             DRIVE_BASE_VOLTAGE_V;
-    double w_avg = (double)d->slow_w / nm / Q31_ONE * DRIVE_BASE_SPEED_RADPS;
-    double w_now = (double)d->mout.w / Q31_ONE * DRIVE_BASE_SPEED_RADPS;
-    double w_filt = (double)d->w_filt / Q31_ONE * DRIVE_BASE_SPEED_RADPS;
+    double w_avg = (double)w->w / nm / Q31_ONE * DRIVE_BASE_SPEED_RADPS;
+    double w_now = (double)w->w_end / Q31_ONE * DRIVE_BASE_SPEED_RADPS;
+    double w_filt = (double)w->w_filt / Q31_ONE * DRIVE_BASE_SPEED_RADPS;
     meas->shaft_radps = (d->cfg.up == COUPLE_AVG)      ? w_avg
                         : (d->cfg.up == COUPLE_FILTER) ? w_filt
                                                        : w_now;
     meas->shaft_end_radps = w_now;
-    meas->te_nm = (double)d->slow_te / nm / Q31_ONE * DRIVE_BASE_TORQUE_NM;
-    double i_sq = (double)d->slow_i_sq / nm / 3.0 / (32768.0 * 32768.0);
+    meas->te_nm = (double)w->te / nm / Q31_ONE * DRIVE_BASE_TORQUE_NM;
+    double i_sq = (double)w->i_sq / nm / 3.0 / (32768.0 * 32768.0);
     meas->i_rms_a = math_sqrt_f64(i_sq) * DRIVE_BASE_CURRENT_A;
-    meas->v_dc_v = (double)d->stage->v_dc / Q28_ONE * DRIVE_BASE_VOLTAGE_V;
-    meas->m_index = (double)d->ctl_last.m / 32768.0;
-    meas->f_hz = (double)d->ctl_last.freq / Q31_ONE * DRIVE_BASE_FREQ_HZ;
-    meas->e_mech_j = (double)d->slow_p_mech / Q31_ONE * DRIVE_BASE_TORQUE_NM *
+    meas->v_dc_v = (double)w->v_dc_end / Q28_ONE * DRIVE_BASE_VOLTAGE_V;
+    meas->m_index = (double)w->cmd.m / 32768.0;
+    meas->f_hz = (double)w->cmd.freq / Q31_ONE * DRIVE_BASE_FREQ_HZ;
+    meas->e_mech_j = (double)w->p_mech / Q31_ONE * DRIVE_BASE_TORQUE_NM *
                      DRIVE_BASE_SPEED_RADPS * medium_s;
-    meas->saturations = d->pwm.sat_count + d->stage->sat_count + d->avg.mod.sat_count +
-                        d->motor.sat_count + d->ctl.sat_count + d->ps_clamps;
-    d->slow_v_dc = d->slow_v_dc_sq = d->slow_w = d->slow_te = d->slow_i_sq = 0;
-    d->slow_p_mech = 0;
-    d->slow_fast_n = d->slow_medium_n = 0u;
+    meas->saturations = w->saturations;
+}
 
+void drive_battery_next(drive_segment *d, const drive_battery *next) {
     d->bat_next = *next;
     d->ps_clamps += power_stage_battery_q(d->stage, next->g_s, next->b_a, &d->battery_next);
     d->battery_new = true;
@@ -334,11 +395,12 @@ void drive_speed_command(drive_segment *d, double speed_radps) {
 void drive_trace(const drive_segment *d, drive_trace_row *row) {
     const power_stage_q *ps = d->stage;
     const double v = DRIVE_BASE_VOLTAGE_V / Q28_ONE;
+    bool rt = (d->cfg.inverter == DRIVE_INVERTER_SWITCHING);
     for (int x = 0; x < 3; x++) {
-        row->s[x] = d->pout.state[x];
+        row->s[x] = rt ? (uint8_t)d->s[x] : d->pout.state[x];
     }
-    row->m_index = (double)d->ctl_last.m / 32768.0;
-    row->f_hz = (double)d->ctl_last.freq / Q31_ONE * DRIVE_BASE_FREQ_HZ;
+    row->m_index = (double)d->cmd.m / 32768.0;
+    row->f_hz = (double)d->cmd.freq / Q31_ONE * DRIVE_BASE_FREQ_HZ;
     row->v_dc = (double)ps->v_dc * v;
     row->v_inv[0] = (double)ps->u[0] * v;
     row->v_inv[1] = (double)ps->u[1] * v;
@@ -346,9 +408,10 @@ void drive_trace(const drive_segment *d, drive_trace_row *row) {
     row->v_cap[0] = (double)ps->ph[0].v_c * v;
     row->v_cap[1] = (double)ps->ph[1].v_c * v;
     row->v_cap[2] = -row->v_cap[0] - row->v_cap[1];
-    for (int x = 0; x < 3; x++) {
-        row->i_motor[x] = (double)d->in.i_motor[x] / 32768.0 * DRIVE_BASE_CURRENT_A;
+    for (int x = 0; x < 2; x++) {
+        row->i_motor[x] = (double)d->i_fast[x] / Q31_ONE * DRIVE_BASE_CURRENT_A;
     }
+    row->i_motor[2] = -row->i_motor[0] - row->i_motor[1];
     row->i_dc = (double)ps->i_dc / Q28_ONE * DRIVE_BASE_CURRENT_A;
     row->n_rpm = (double)d->mout.n_rpm_q16 / 65536.0;
     row->te_nm = (double)d->mout.te / Q31_ONE * DRIVE_BASE_TORQUE_NM;

@@ -35,9 +35,8 @@ drive_status drive_init(drive_segment *d, const drive_config *cfg, const propell
         d->stage = &d->avg.stage;
         mod_ns = cfg->fast_ns / cfg->averaged_substeps;
     } else {
-        const pwm_params *pp =
-            (cfg->inverter == DRIVE_INVERTER_EVENT) ? &pwm_located : &pwm_sampled;
-        if (pwm_init_f32(&d->pwm, pp, cfg->fast_ns) != PWM_OK ||
+        if (pwm_init_f32(&d->pwm, &pwm_located, cfg->fast_ns) != PWM_OK ||
+            pwm_rt_init(&d->rt, &pwm_sampled, cfg->fast_ns) != PWM_OK ||
             power_stage_init_f32(&d->ps, &power_stage_params_default, cfg->fast_ns,
                                  cfg->v_dc0_v) != PS_OK) {
             return DRIVE_ERR_MODEL;
@@ -62,46 +61,32 @@ drive_status drive_init(drive_segment *d, const drive_config *cfg, const propell
         return DRIVE_ERR_MODEL;
     }
     d->filt_k = 1.0f / (float)cfg->fast_per_medium;
-    d->e_moves = (cfg->down == COUPLE_FOH || cfg->down == COUPLE_DERIV);
+    d->k_deriv = (float)(6.283185307179586 * fast_s / 1.7320508075688772);
+    d->plain = (cfg->inverter == DRIVE_INVERTER_SWITCHING) &&
+               (cfg->down == COUPLE_ZOH || cfg->down == COUPLE_STAGGER) &&
+               (cfg->up != COUPLE_FILTER);
     return DRIVE_OK;
 }
 
-/*
- * What every fast step does after the power stage: the motor's fast
- * companion and the frame sums (as in drive_segment_fixed.c; the EMF moves
- * only in the extrapolating modes).
- */
-static inline void fast_companion_and_sums(drive_segment *d, const power_stage_f32 *ps) {
+/* The real-time step (as in drive_segment_fixed.c). */
+static inline void fast_tick_plain(drive_segment *d) {
+    power_stage_f32 *ps = &d->ps;
+    pwm_rt_step(&d->rt, d->s);
+    ps_fast_step_f32(ps, &d->in.battery, d->s, d->i_fast[0], d->i_fast[1]);
     const float va = ps->ph[0].v_c;
     const float vb = ps->ph[1].v_c;
-    const float vdc = ps->v_dc;
-    float ea = d->e[0];
-    float eb = d->e[1];
-    if (d->e_moves) {
-        ea += d->e_step[0];
-        eb += d->e_step[1];
-        d->e[0] = ea;
-        d->e[1] = eb;
-    }
-    const float ia = d->i_fast[0] + (va - ea) * d->k_l;
-    const float ib = d->i_fast[1] + (vb - eb) * d->k_l;
-    d->i_fast[0] = ia;
-    d->i_fast[1] = ib;
-    d->in.i_motor_a[0] = ia;
-    d->in.i_motor_a[1] = ib;
+    d->i_fast[0] += (va - d->e[0]) * d->k_l;
+    d->i_fast[1] += (vb - d->e[1]) * d->k_l;
     d->sums.v_cap[0] += va;
     d->sums.v_cap[1] += vb;
-    d->sums.v_dc += vdc;
-    d->sums.v_dc_sq += vdc * vdc;
-    d->sums.n++;
+    d->sums.v_dc += ps->v_dc;
 }
 
-void drive_fast_tick(drive_segment *d) {
+/* Every other configuration: the general modulators, a moving EMF, the filter coupling. */
+static void fast_tick_general(drive_segment *d) {
     if (d->cfg.inverter == DRIVE_INVERTER_SWITCHING) {
-        /* The real-time path: modulator and power stage fused (power_stage_fast.h). */
-        ps_fast_step_f32(&d->pwm, &d->ps, &d->in.battery, d->in.i_motor_a[0],
-                         d->in.i_motor_a[1], d->pout.state);
-        fast_companion_and_sums(d, &d->ps);
+        pwm_rt_step(&d->rt, d->s);
+        ps_fast_step_f32(&d->ps, &d->in.battery, d->s, d->i_fast[0], d->i_fast[1]);
     } else {
         if (d->cfg.inverter == DRIVE_INVERTER_AVERAGED) {
             inverter_avg_step_f32(&d->avg, &d->in);
@@ -112,29 +97,49 @@ void drive_fast_tick(drive_segment *d) {
             d->in.duty[2] = d->pout.duty[2];
             power_stage_step_f32(&d->ps, &d->in);
         }
-        fast_companion_and_sums(d, d->stage);
     }
+    const power_stage_f32 *ps = d->stage;
+    const float va = ps->ph[0].v_c;
+    const float vb = ps->ph[1].v_c;
+    d->e[0] += d->e_step[0];
+    d->e[1] += d->e_step[1];
+    d->i_fast[0] += (va - d->e[0]) * d->k_l;
+    d->i_fast[1] += (vb - d->e[1]) * d->k_l;
+    d->in.i_motor_a[0] = d->i_fast[0];
+    d->in.i_motor_a[1] = d->i_fast[1];
+    d->sums.v_cap[0] += va;
+    d->sums.v_cap[1] += vb;
+    d->sums.v_dc += ps->v_dc;
     if (d->cfg.up == COUPLE_FILTER) {
-        d->filt[0] += (d->stage->ph[0].v_c - d->filt[0]) * d->filt_k;
-        d->filt[1] += (d->stage->ph[1].v_c - d->filt[1]) * d->filt_k;
+        d->filt[0] += (va - d->filt[0]) * d->filt_k;
+        d->filt[1] += (vb - d->filt[1]) * d->filt_k;
+    }
+}
+
+void drive_fast_tick(drive_segment *d) {
+    if (d->plain) {
+        fast_tick_plain(d);
+    } else {
+        fast_tick_general(d);
     }
 }
 
 void drive_medium_latch(drive_segment *d) {
-    float ahead = 1.5f * (float)d->cfg.fast_per_medium - 1.0f;
-    for (int x = 0; x < 2; x++) {
-        d->i_fast[x] += d->out_corr[x];
-        d->out_corr[x] = 0.0f;
-        d->e_step[x] = d->out_de[x];
-        d->e[x] = d->out_e[x] + d->out_de[x] * ahead;
-    }
-    d->in.i_motor_a[0] = d->i_fast[0];
-    d->in.i_motor_a[1] = d->i_fast[1];
-    d->in.i_motor_a[2] = -d->i_fast[0] - d->i_fast[1];
-    if (d->ctl_new) {
-        pwm_command_inc_f32(d->mod, d->ctl_out.m, d->ctl_out.phase_inc);
-        d->ctl_last = d->ctl_out;
-        d->ctl_new = false;
+    const drive_latch *o = &d->out;
+    pwm_rt_apply(&d->rt, &o->ramp);
+    d->i_fast[0] += o->corr[0];
+    d->i_fast[1] += o->corr[1];
+    d->e[0] = o->e[0];
+    d->e[1] = o->e[1];
+    if (!d->plain) {
+        d->e_step[0] = o->de[0];
+        d->e_step[1] = o->de[1];
+        d->in.i_motor_a[0] = d->i_fast[0];
+        d->in.i_motor_a[1] = d->i_fast[1];
+        if (d->out.cmd_new) {
+            pwm_command_inc_f32(d->mod, o->cmd.m, o->cmd.phase_inc);
+            d->out.cmd_new = false;
+        }
     }
 }
 
@@ -147,18 +152,22 @@ void drive_medium_publish(drive_segment *d, bool slow_boundary) {
             d->battery_new = false;
         }
     }
-    d->sums.i_mark[0] = d->i_fast[0];
-    d->sums.i_mark[1] = d->i_fast[1];
-    d->medium_in = d->sums;
-    float n = (float)d->sums.n;
-    if (d->cfg.up == COUPLE_SAMPLE) {
-        d->medium_in.v_cap[0] = d->stage->ph[0].v_c * n;
-        d->medium_in.v_cap[1] = d->stage->ph[1].v_c * n;
-    } else if (d->cfg.up == COUPLE_FILTER) {
-        d->medium_in.v_cap[0] = d->filt[0] * n;
-        d->medium_in.v_cap[1] = d->filt[1] * n;
+    drive_frame_sums *m = &d->medium_in;
+    m->v_cap[0] = d->sums.v_cap[0];
+    m->v_cap[1] = d->sums.v_cap[1];
+    m->v_dc = d->sums.v_dc;
+    m->i_mark[0] = d->i_fast[0];
+    m->i_mark[1] = d->i_fast[1];
+    m->v_mark[0] = d->stage->ph[0].v_c;
+    m->v_mark[1] = d->stage->ph[1].v_c;
+    if (d->cfg.up == COUPLE_FILTER) {
+        m->filt_mark[0] = d->filt[0];
+        m->filt_mark[1] = d->filt[1];
     }
-    d->sums = (drive_frame_sums){{0.0f, 0.0f}, 0.0f, 0.0f, 0u, {0.0f, 0.0f}};
+    m->sat = d->stage->sat_count;
+    d->sums.v_cap[0] = 0.0f;
+    d->sums.v_cap[1] = 0.0f;
+    d->sums.v_dc = 0.0f;
 }
 
 /* As in drive_segment_fixed.c: the frame's EMF and its change per fast step [V]. */
@@ -173,79 +182,119 @@ static void emf_update(drive_segment *d, const float v_mean[2], const float i_en
         de[0] = (e[0] - d->e_prev[0]) * k;
         de[1] = (e[1] - d->e_prev[1]) * k;
     } else if (d->cfg.down == COUPLE_DERIV) {
-        float g = 6.2831853f * d->ctl_last.freq_hz * 1e-9f * (float)d->cfg.fast_ns / 1.7320508f;
+        float g = d->cmd.freq_hz * d->k_deriv;
         de[0] = (-e[0] - 2.0f * e[1]) * g;
         de[1] = (2.0f * e[0] + e[1]) * g;
     }
+    float ahead = 1.5f * (float)d->cfg.fast_per_medium - 1.0f;
     for (int x = 0; x < 2; x++) {
-        d->out_e[x] = e[x];
-        d->out_de[x] = de[x];
+        d->out.e[x] = e[x] + de[x] * ahead;
+        d->out.de[x] = de[x];
         d->e_prev[x] = e[x];
     }
 }
 
-void drive_medium_task(drive_segment *d, bool control_due) {
+static void slow_sums_add(drive_segment *d, const drive_frame_sums *s, const float i_end[2]) {
+    drive_slow_sums *w = &d->slow;
+    float n = (float)d->cfg.fast_per_medium;
+    double vdc_mean = (double)(s->v_dc / n);
+    w->v_dc += (double)s->v_dc;
+    w->v_dc_sq += vdc_mean * vdc_mean * (double)n;
+    w->fast_n += d->cfg.fast_per_medium;
+    w->w += (double)d->mout.w_radps;
+    w->te += (double)d->mout.te_nm;
+    w->i_sq += (double)(i_end[0] * i_end[0] + i_end[1] * i_end[1] + d->mout.i_c * d->mout.i_c);
+    w->p_mech += (double)(d->mout.te_nm * d->mout.w_radps);
+    w->medium_n++;
+    if (d->cfg.up == COUPLE_FILTER) {
+        d->w_filt += (d->mout.w_radps - d->w_filt) / (float)d->cfg.medium_per_slow;
+    }
+}
+
+void drive_medium_task(drive_segment *d, bool control_due, bool slow_boundary) {
     const drive_frame_sums *s = &d->medium_in;
-    float inv_n = 1.0f / (float)((s->n > 0u) ? s->n : 1u);
+    uint32_t n = d->cfg.fast_per_medium;
+    float inv_n = 1.0f / (float)n;
     induction_motor_in_f32 min;
-    min.v_a = s->v_cap[0] * inv_n;
-    min.v_b = s->v_cap[1] * inv_n;
+    if (d->cfg.up == COUPLE_AVG) {
+        min.v_a = s->v_cap[0] * inv_n;
+        min.v_b = s->v_cap[1] * inv_n;
+    } else if (d->cfg.up == COUPLE_SAMPLE) {
+        min.v_a = s->v_mark[0];
+        min.v_b = s->v_mark[1];
+    } else {
+        min.v_a = s->filt_mark[0];
+        min.v_b = s->filt_mark[1];
+    }
     min.v_c = -min.v_a - min.v_b;
     induction_motor_step_f32(&d->motor, &min, &d->mout);
     float i_end[2] = {d->mout.i_a, d->mout.i_b};
     float v_mean[2] = {min.v_a, min.v_b};
     emf_update(d, v_mean, i_end);
     for (int x = 0; x < 2; x++) {
-        d->out_corr[x] = i_end[x] - s->i_mark[x];
+        d->out.corr[x] = i_end[x] - s->i_mark[x];
         d->i_prev[x] = i_end[x];
     }
-    d->slow_v_dc += (double)s->v_dc;
-    d->slow_v_dc_sq += (double)s->v_dc_sq;
-    d->slow_fast_n += s->n;
-    d->slow_w += (double)d->mout.w_radps;
-    d->slow_te += (double)d->mout.te_nm;
-    d->slow_i_sq += (double)(i_end[0] * i_end[0] + i_end[1] * i_end[1] +
-                             d->mout.i_c * d->mout.i_c);
-    d->slow_p_mech += (double)(d->mout.te_nm * d->mout.w_radps);
-    d->slow_medium_n++;
-    if (d->cfg.up == COUPLE_FILTER) {
-        d->w_filt += (d->mout.w_radps - d->w_filt) / (float)d->cfg.medium_per_slow;
-    }
+    slow_sums_add(d, s, i_end);
     if (control_due) {
+        if (d->ctl_done) {
+            d->cmd = d->ctl_out;
+            d->ctl_sat_taken = d->ctl_sat;
+            d->ctl_done = false;
+            d->out.cmd = d->cmd;
+            d->out.cmd_new = true;
+        }
         d->ctl_in.speed_cmd_radps = d->speed_cmd;
         d->ctl_in.w_radps = d->mout.w_radps;
         d->ctl_in.i_a = i_end[0];
         d->ctl_in.i_b = i_end[1];
         d->ctl_in.i_c = d->mout.i_c;
         d->ctl_in.vdc_v = s->v_dc * inv_n;
-        drive_control_step_f32(&d->ctl, &d->ctl_in, &d->ctl_out);
-        d->ctl_new = true;
+    }
+    if (d->cfg.inverter == DRIVE_INVERTER_SWITCHING) {
+        pwm_rt_ramp_f32(&d->out.ramp, d->cmd.m, d->ref_ph, d->cmd.phase_inc, n);
+        d->ref_ph += d->cmd.phase_inc * n;
+    }
+    if (slow_boundary) {
+        drive_slow_sums *w = &d->slow;
+        w->w_filt = d->w_filt;
+        w->w_end = d->mout.w_radps;
+        w->v_dc_end = d->stage->v_dc;
+        w->cmd = d->cmd;
+        w->saturations = s->sat + d->pwm.sat_count + d->avg.mod.sat_count + d->ctl_sat_taken +
+                         d->ps_clamps;
+        d->slow_out = *w;
+        *w = (drive_slow_sums){0};
     }
 }
 
-void drive_slow_exchange(drive_segment *d, const drive_battery *next, drive_slow_meas *meas) {
-    meas->battery = d->bat_done;
-    double nf = (d->slow_fast_n > 0u) ? (double)d->slow_fast_n : 1.0;
-    double nm = (d->slow_medium_n > 0u) ? (double)d->slow_medium_n : 1.0;
-    double medium_s = 1e-9 * (double)d->cfg.fast_ns * (double)d->cfg.fast_per_medium;
-    meas->v_dc_mean_v = d->slow_v_dc / nf;
-    meas->v_dc_sq_mean_v2 = d->slow_v_dc_sq / nf;
-    meas->shaft_radps = (d->cfg.up == COUPLE_AVG)      ? d->slow_w / nm
-                        : (d->cfg.up == COUPLE_FILTER) ? (double)d->w_filt
-                                                       : (double)d->mout.w_radps;
-    meas->shaft_end_radps = (double)d->mout.w_radps;
-    meas->te_nm = d->slow_te / nm;
-    meas->i_rms_a = math_sqrt_f64(d->slow_i_sq / nm / 3.0);
-    meas->v_dc_v = (double)d->stage->v_dc;
-    meas->m_index = (double)d->ctl_last.m;
-    meas->f_hz = (double)d->ctl_last.freq_hz;
-    meas->e_mech_j = d->slow_p_mech * medium_s;
-    meas->saturations = d->pwm.sat_count + d->stage->sat_count + d->avg.mod.sat_count +
-                        d->ps_clamps;
-    d->slow_v_dc = d->slow_v_dc_sq = d->slow_w = d->slow_te = d->slow_i_sq = 0.0;
-    d->slow_p_mech = 0.0;
-    d->slow_fast_n = d->slow_medium_n = 0u;
+void drive_control_task(drive_segment *d) {
+    drive_control_step_f32(&d->ctl, &d->ctl_in, &d->ctl_out);
+    d->ctl_done = true; /* the float controller counts no saturations */
+}
 
+void drive_slow_measure(const drive_segment *d, drive_slow_meas *meas) {
+    const drive_slow_sums *w = &d->slow_out;
+    meas->battery = d->bat_done;
+    double nf = (w->fast_n > 0u) ? (double)w->fast_n : 1.0;
+    double nm = (w->medium_n > 0u) ? (double)w->medium_n : 1.0;
+    double medium_s = 1e-9 * (double)d->cfg.fast_ns * (double)d->cfg.fast_per_medium;
+    meas->v_dc_mean_v = w->v_dc / nf;
+    meas->v_dc_sq_mean_v2 = w->v_dc_sq / nf;
+    meas->shaft_radps = (d->cfg.up == COUPLE_AVG)      ? w->w / nm
+                        : (d->cfg.up == COUPLE_FILTER) ? (double)w->w_filt
+                                                       : (double)w->w_end;
+    meas->shaft_end_radps = (double)w->w_end;
+    meas->te_nm = w->te / nm;
+    meas->i_rms_a = math_sqrt_f64(w->i_sq / nm / 3.0);
+    meas->v_dc_v = (double)w->v_dc_end;
+    meas->m_index = (double)w->cmd.m;
+    meas->f_hz = (double)w->cmd.freq_hz;
+    meas->e_mech_j = w->p_mech * medium_s;
+    meas->saturations = w->saturations;
+}
+
+void drive_battery_next(drive_segment *d, const drive_battery *next) {
     d->bat_next = *next;
     d->ps_clamps += power_stage_battery_f32(d->stage, next->g_s, next->b_a, &d->battery_next);
     d->battery_new = true;
@@ -262,12 +311,15 @@ void drive_speed_command(drive_segment *d, double speed_radps) { d->speed_cmd = 
 
 void drive_trace(const drive_segment *d, drive_trace_row *row) {
     const power_stage_f32 *ps = d->stage;
+    bool rt = (d->cfg.inverter == DRIVE_INVERTER_SWITCHING);
     for (int x = 0; x < 3; x++) {
-        row->s[x] = d->pout.state[x];
-        row->i_motor[x] = (double)d->in.i_motor_a[x];
+        row->s[x] = rt ? (uint8_t)d->s[x] : d->pout.state[x];
     }
-    row->m_index = (double)d->ctl_last.m;
-    row->f_hz = (double)d->ctl_last.freq_hz;
+    row->i_motor[0] = (double)d->i_fast[0];
+    row->i_motor[1] = (double)d->i_fast[1];
+    row->i_motor[2] = -row->i_motor[0] - row->i_motor[1];
+    row->m_index = (double)d->cmd.m;
+    row->f_hz = (double)d->cmd.freq_hz;
     row->v_dc = (double)ps->v_dc;
     row->v_inv[0] = (double)ps->u[0];
     row->v_inv[1] = (double)ps->u[1];

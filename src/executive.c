@@ -123,6 +123,9 @@ static exec_status init_frames(exec *e, const exec_config *cfg, double duration)
         return EXEC_ERR_CONFIG;
     }
     e->frames = (uint32_t)(reports * e->slow_per_report);
+    e->stagger_at = (cfg->down == COUPLE_STAGGER && c->fast_per_medium >= 2u)
+                        ? c->fast_per_medium / 2u : 0u;
+    e->fast_event_at = (e->stagger_at != 0u) ? e->stagger_at : c->fast_per_medium;
     return EXEC_OK;
 }
 
@@ -206,33 +209,29 @@ static void overrun(exec *e, uint32_t *counter) {
     e->state = EXEC_STOP_OVERRUN;
 }
 
-bool exec_fast_tick(exec *e) {
-    if (e->state != EXEC_RUNNING) {
-        return false;
-    }
-    drive_fast_tick(&e->drive);
-    e->count.fast++;
-    uint32_t phase = ++e->fast_phase;
+/*
+ * A fast tick's event: the staggered latch half a frame after the release,
+ * or the motor-frame boundary, where the motor task is released. Out of
+ * the fast tick's common path.
+ */
+static bool fast_event(exec *e) {
     uint32_t n = e->cfg.fast_per_medium;
-    if (e->cfg.down == COUPLE_STAGGER && n >= 2u && phase == n / 2u) {
+    if (e->fast_phase < n) {
         /* Staggered: the motor task's results arrive half a frame after its release. */
+        e->fast_event_at = n;
         if (e->medium_busy) {
             overrun(e, &e->count.overruns_medium);
             return false;
         }
         drive_medium_latch(&e->drive);
-    }
-    if (phase < n) {
         return false;
     }
     e->fast_phase = 0u;
+    e->fast_event_at = (e->stagger_at != 0u) ? e->stagger_at : n;
+    e->count.fast += n;
     if (e->medium_busy) {
         overrun(e, &e->count.overruns_medium);
         return false;
-    }
-    bool control = (++e->medium_phase == e->cfg.medium_per_control);
-    if (control) {
-        e->medium_phase = 0u;
     }
     bool slow = (++e->slow_phase == e->cfg.medium_per_slow);
     if (slow) {
@@ -240,38 +239,68 @@ bool exec_fast_tick(exec *e) {
     }
     /* Latch before publish: the publish marks the fast currents the next
      * motor task compares with its own, corrections included. */
-    if (e->cfg.down != COUPLE_STAGGER || n < 2u) {
+    if (e->stagger_at == 0u) {
         drive_medium_latch(&e->drive);
     }
     drive_medium_publish(&e->drive, slow);
-    e->rel_control = control;
     e->rel_slow = slow;
-    e->rel_time_ns = e->count.fast * (uint64_t)e->cfg.fast_ns;
     e->medium_busy = true;
     return true;
 }
 
-void exec_medium_tick(exec *e) {
+bool exec_fast_tick(exec *e) {
+    if (e->state != EXEC_RUNNING) {
+        return false;
+    }
+    drive_fast_tick(&e->drive);
+    if (++e->fast_phase != e->fast_event_at) {
+        return false;
+    }
+    return fast_event(e);
+}
+
+bool exec_medium_tick(exec *e) {
     if (!e->medium_busy) {
-        return;
+        return false;
     }
-    if (e->rel_control) {
-        double t = 1e-9 * (double)e->rel_time_ns;
-        drive_speed_command(&e->drive, speed_command_at(e, t) * RPM_TO_RADPS);
-        e->count.control++;
+    bool control = (++e->medium_phase == e->cfg.medium_per_control);
+    if (control) {
+        e->medium_phase = 0u;
+        if (e->control_busy) {
+            /* The controller released a control frame ago has not finished. */
+            overrun(e, &e->count.overruns_control);
+            e->medium_busy = false;
+            return false;
+        }
     }
-    drive_medium_task(&e->drive, e->rel_control);
+    drive_medium_task(&e->drive, control, e->rel_slow);
+    e->count.medium++;
     if (e->rel_slow) {
         if (e->slow_pending) {
             overrun(e, &e->count.overruns_slow);
         } else {
-            drive_slow_exchange(&e->drive, &e->bat_next, &e->meas);
             e->speed_report_rpm = e->speed_rpm;
             e->slow_pending = true;
         }
     }
-    e->count.medium++;
+    if (control) {
+        e->control_time_ns =
+            e->count.medium * (uint64_t)e->cfg.fast_per_medium * (uint64_t)e->cfg.fast_ns;
+        e->control_busy = true;
+    }
     e->medium_busy = false;
+    return control;
+}
+
+void exec_control_tick(exec *e) {
+    if (!e->control_busy) {
+        return;
+    }
+    double t = 1e-9 * (double)e->control_time_ns;
+    drive_speed_command(&e->drive, speed_command_at(e, t) * RPM_TO_RADPS);
+    drive_control_task(&e->drive);
+    e->count.control++;
+    e->control_busy = false;
 }
 
 /* ---- Slow rate ----------------------------------------------------------- */
@@ -280,6 +309,7 @@ bool exec_slow_pending(const exec *e) { return e->slow_pending; }
 
 /* The battery's frame from the bus voltage the drive measured (i = G v - b). */
 static void battery_frame(exec *e) {
+    drive_slow_measure(&e->drive, &e->meas);
     const drive_slow_meas *m = &e->meas;
     double g = m->battery.g_s;
     double b = m->battery.b_a;
@@ -306,6 +336,7 @@ static void battery_frame(exec *e) {
     battery_companion bc = battery_companion_f64(&e->bat);
     e->bat_next.g_s = bc.g_s;
     e->bat_next.b_a = bc.b_a;
+    drive_battery_next(&e->drive, &e->bat_next);
 }
 
 static void make_report(exec *e) {
@@ -384,8 +415,8 @@ void exec_desk_step(exec *e) {
         exec_slow_step(e);
         return;
     }
-    if (exec_fast_tick(e)) {
-        exec_medium_tick(e);
+    if (exec_fast_tick(e) && exec_medium_tick(e)) {
+        exec_control_tick(e);
     }
     if (e->slow_pending) {
         exec_slow_step(e);
@@ -405,7 +436,13 @@ double exec_time_s(const exec *e) {
     if (e->cfg.plant == EXEC_PLANT_VESSEL) {
         return (double)e->frame * e->slow_s;
     }
-    return 1e-9 * (double)e->count.fast * (double)e->cfg.fast_ns;
+    return 1e-9 * (double)exec_fast_steps(e) * (double)e->cfg.fast_ns;
 }
+
+uint32_t exec_overruns(const exec *e) {
+    return e->count.overruns_medium + e->count.overruns_control + e->count.overruns_slow;
+}
+
+uint64_t exec_fast_steps(const exec *e) { return e->count.fast + e->fast_phase; }
 
 const manoeuvre_result *exec_manoeuvre(const exec *e) { return &e->man.r; }

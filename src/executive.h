@@ -96,8 +96,9 @@ typedef enum {
 typedef struct {
     double e_batt_j;      /* [J] energy delivered by the battery at its terminals */
     double e_mech_j;      /* [J] mechanical energy delivered to the shaft */
-    uint64_t fast, medium, control, slow; /* steps run */
-    uint32_t overruns_medium, overruns_slow;
+    uint64_t fast;        /* fast steps run, counted at motor-frame boundaries (exec_fast_steps) */
+    uint64_t medium, control, slow; /* steps run */
+    uint32_t overruns_medium, overruns_control, overruns_slow;
     uint32_t saturations; /* fixed-point saturation events (fast models) */
 } exec_counters;
 
@@ -131,12 +132,15 @@ typedef struct {
     double shaft_start_rpm;   /* [rpm] shaft speed at the start of the slow frame */
     /* Schedule. */
     uint32_t fast_phase;      /* fast steps since the last motor-frame boundary */
+    uint32_t fast_event_at;   /* fast_phase of the next boundary or staggered latch */
+    uint32_t stagger_at;      /* fast_phase of the staggered latch (0: not staggered) */
     uint32_t medium_phase;    /* motor frames since the last controller frame */
     uint32_t slow_phase;      /* motor frames since the last slow boundary */
     volatile bool medium_busy;
+    volatile bool control_busy;
     volatile bool slow_pending;
-    bool rel_control, rel_slow; /* what the released medium task is due to do */
-    uint64_t rel_time_ns;       /* time of its release */
+    bool rel_slow;              /* the released medium task is at a slow boundary */
+    uint64_t control_time_ns;   /* release time of the controller task */
     drive_slow_meas meas;       /* the slow frame's measurements (medium task -> slow) */
     drive_battery bat_next;     /* the next companion (slow -> medium task) */
     /* Report accumulation over the reporting period. */
@@ -158,8 +162,15 @@ exec_status exec_init(exec *e, const exec_config *cfg, const scenario *scn);
 /* The fast tick; true when it released the medium task. */
 bool exec_fast_tick(exec *e);
 
-/* The medium task. */
-void exec_medium_tick(exec *e);
+/* The medium (motor) task; true when it released the controller task. */
+bool exec_medium_tick(exec *e);
+
+/*
+ * The controller task, at a lower priority than the motor task: its result
+ * is taken by the motor task at the next control boundary, so it may take
+ * up to a control frame.
+ */
+void exec_control_tick(exec *e);
 
 /* The background's slow step, when exec_slow_pending(). */
 bool exec_slow_pending(const exec *e);
@@ -174,6 +185,12 @@ void exec_desk_step(exec *e);
 
 /* Takes the telemetry record made by the last slow step, if any. */
 bool exec_report_take(exec *e, exec_frame *out);
+
+/* Overruns at every rate the executive sees (the fast tick's are the port's). */
+uint32_t exec_overruns(const exec *e);
+
+/* Fast steps run so far. */
+uint64_t exec_fast_steps(const exec *e);
 
 /* Simulated time now [s]. */
 double exec_time_s(const exec *e);

@@ -194,6 +194,7 @@ size_t tlm_encode_end(uint8_t *buf, uint16_t seq, const tlm_end *e) {
     put_u64(&w, e->slow);
     put_u32(&w, e->overruns_fast);
     put_u32(&w, e->overruns_medium);
+    put_u32(&w, e->overruns_control);
     put_u32(&w, e->overruns_slow);
     put_u32(&w, e->saturations);
     put_f64(&w, e->e_batt_j);
@@ -280,6 +281,7 @@ void tlm_decode_end(const tlm_frame *f, tlm_end *e) {
     e->slow = get_u64(&r);
     e->overruns_fast = get_u32(&r);
     e->overruns_medium = get_u32(&r);
+    e->overruns_control = get_u32(&r);
     e->overruns_slow = get_u32(&r);
     e->saturations = get_u32(&r);
     e->e_batt_j = get_f64(&r);

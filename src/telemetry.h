@@ -38,10 +38,10 @@
 
 #define TLM_START_PAYLOAD (4u + 5u * 4u + 8u + TLM_MACHINE_CHARS)
 #define TLM_RECORD_PAYLOAD (4u + 30u * 8u)
-#define TLM_END_PAYLOAD (4u + 4u * 8u + 4u * 4u + 2u * 8u + 4u)
+#define TLM_END_PAYLOAD (4u + 4u * 8u + 5u * 4u + 2u * 8u + 4u)
 #define TLM_FRAME_MAX (TLM_HEADER_BYTES + TLM_RECORD_PAYLOAD + TLM_CRC_BYTES)
 
-#define TLM_VERSION 1u
+#define TLM_VERSION 2u
 
 typedef enum { TLM_START = 1, TLM_RECORD = 2, TLM_END = 3 } tlm_type;
 
@@ -66,6 +66,7 @@ typedef struct {
     uint64_t fast, medium, control, slow;  /* steps run */
     uint32_t overruns_fast;     /* the fast tick still pending at the end of its handler */
     uint32_t overruns_medium;   /* the motor task still busy at its next release */
+    uint32_t overruns_control;  /* the controller task still busy when its result is due */
     uint32_t overruns_slow;     /* the slow step still pending at the next slow boundary */
     uint32_t saturations;
     double e_batt_j;            /* [J] */

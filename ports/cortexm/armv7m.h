@@ -13,6 +13,11 @@
 #define SCB_VTOR REG32(0xE000ED08u)       /* vector table offset */
 #define SCB_SHPR3 REG32(0xE000ED20u)      /* priorities of PendSV, SysTick */
 #define SCB_CPACR REG32(0xE000ED88u)      /* coprocessor access (FPU) */
+#define NVIC_ISER(n) REG32(0xE000E100u + 4u * ((n) / 32u)) /* interrupt set-enable */
+#define NVIC_ISPR(n) REG32(0xE000E200u + 4u * ((n) / 32u)) /* interrupt set-pending */
+#define NVIC_ICPR(n) REG32(0xE000E280u + 4u * ((n) / 32u)) /* interrupt clear-pending */
+#define NVIC_IPR8(n) (*(volatile uint8_t *)(uintptr_t)(0xE000E400u + (n))) /* priority byte */
+#define NVIC_BIT(n) (1u << ((n) % 32u))
 #define SYST_CSR REG32(0xE000E010u)       /* SysTick control and status */
 #define SYST_RVR REG32(0xE000E014u)       /* SysTick reload value */
 #define SYST_CVR REG32(0xE000E018u)       /* SysTick current value */
@@ -30,6 +35,12 @@ static inline void cpu_irq_disable(void) { __asm__ volatile("cpsid i" ::: "memor
 static inline void cpu_irq_enable(void) { __asm__ volatile("cpsie i" ::: "memory"); }
 static inline void cpu_wfi(void) { __asm__ volatile("wfi" ::: "memory"); }
 static inline void cpu_barrier(void) { __asm__ volatile("dsb\n\tisb" ::: "memory"); }
+
+static inline uint32_t cpu_ipsr(void) {
+    uint32_t v;
+    __asm__ volatile("mrs %0, ipsr" : "=r"(v));
+    return v;
+}
 
 static inline uintptr_t cpu_sp(void) {
     uintptr_t v;

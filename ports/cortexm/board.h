@@ -20,6 +20,12 @@ uint32_t board_systick_hz(void);
 /* A free-running up-counter (its clock is the board's to choose); wraps modulo 2^32. */
 uint32_t board_counter(void);
 
+/*
+ * An interrupt line no emulated device drives, pended by software to run
+ * the control tick (hal_control_release). Within the vector table's 48.
+ */
+extern const uint32_t board_soft_irq;
+
 /* Writes bytes to the machine's first UART (blocking). */
 void board_uart_write(const uint8_t *data, size_t n);
 

@@ -36,6 +36,9 @@
 
 const char board_name[] = BOARD_NAME;
 
+/* IRQ 47: beyond the peripherals QEMU models on the LM3S6965. */
+const uint32_t board_soft_irq = 47u;
+
 void board_init(void) {
     WDT_LOAD = 0xFFFFFFFFu;
     WDT_CTL = WDT_CTL_INTEN;

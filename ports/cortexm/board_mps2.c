@@ -27,6 +27,9 @@
 
 const char board_name[] = BOARD_NAME;
 
+/* IRQ 30: unused by the MPS2 FPGA images QEMU models. */
+const uint32_t board_soft_irq = 30u;
+
 void board_init(void) {
     TIMER1_RELOAD = 0xFFFFFFFFu;
     TIMER1_VALUE = 0xFFFFFFFFu;

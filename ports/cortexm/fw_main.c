@@ -4,9 +4,13 @@
  *   SysTick (highest priority)  every 2 us: exec_fast_tick(), which at a
  *                               motor-frame boundary releases the medium
  *                               task by pending PendSV;
- *   PendSV (lowest priority)    exec_medium_tick(): the motor, the
- *                               controller every 8th time; the fast tick
- *                               preempts it;
+ *   PendSV (below SysTick)      exec_medium_tick(): the motor; every 8th
+ *                               time it releases the controller task by
+ *                               pending the board's software interrupt;
+ *                               the fast tick preempts it;
+ *   software IRQ (below PendSV) exec_control_tick(): the controller, whose
+ *                               result the motor task takes a control
+ *                               frame later; both preempt it;
  *   thread mode                 the background loop: exec_slow_step()
  *                               (battery, vessel) when a slow frame is due,
  *                               then the telemetry record over the UART;
@@ -96,9 +100,13 @@ static void fw_fast(void) {
 }
 
 static void fw_medium(void) {
-    exec_medium_tick(&fw_exec);
+    if (exec_medium_tick(&fw_exec)) {
+        hal_control_release();
+    }
     FW_SPIN(FW_RATE_MEDIUM);
 }
+
+static void fw_control(void) { exec_control_tick(&fw_exec); }
 
 /* ---- Telemetry ------------------------------------------------------------ */
 
@@ -322,25 +330,28 @@ __attribute__((noinline)) static int fw_finish(void) {
     uint32_t of = hal_cm_fast_overruns();
     bool done = e->state == EXEC_DONE && of == 0u;
     int status = done ? 0 : 1;
-    tlm_end end = {(uint8_t)e->state, (uint8_t)status, e->count.fast, e->count.medium,
+    tlm_end end = {(uint8_t)e->state, (uint8_t)status, exec_fast_steps(e), e->count.medium,
                    e->count.control, e->count.slow, of, e->count.overruns_medium,
-                   e->count.overruns_slow, e->count.saturations, e->count.e_batt_j,
+                   e->count.overruns_control, e->count.overruns_slow, e->count.saturations, e->count.e_batt_j,
                    e->count.e_mech_j, stack_used()};
     fw_send(tlm_encode_end(fw_frame, fw_seq, &end));
     fmt_print("uuvsim firmware on %s, %s build: %.1f s simulated, %s\n", board_name,
               UUV_NUMERIC_NAME, exec_time_s(e), done ? "completed" : "stopped early");
     fmt_print("steps: %llu fast, %llu motor, %llu control, %llu slow; overruns: %u fast, "
-              "%u motor, %u slow; %u saturations\n",
-              (unsigned long long)e->count.fast, (unsigned long long)e->count.medium,
+              "%u motor, %u control, %u slow; %u saturations\n",
+              (unsigned long long)exec_fast_steps(e), (unsigned long long)e->count.medium,
               (unsigned long long)e->count.control, (unsigned long long)e->count.slow,
               (unsigned)of, (unsigned)e->count.overruns_medium,
-              (unsigned)e->count.overruns_slow, (unsigned)e->count.saturations);
+              (unsigned)e->count.overruns_control, (unsigned)e->count.overruns_slow,
+              (unsigned)e->count.saturations);
     fmt_print("stack: %u of %u bytes used\n", (unsigned)end.stack_used_bytes,
               (unsigned)((uintptr_t)__stack_top__ - (uintptr_t)__stack_bottom__));
     if (!done) {
         fmt_print("stopped early: a %s overran its frame\n",
-                  of != 0u ? "fast tick" : (e->count.overruns_medium != 0u ? "motor task"
-                                                                            : "slow step"));
+                  of != 0u                            ? "fast tick"
+                  : e->count.overruns_medium != 0u    ? "motor task"
+                  : e->count.overruns_control != 0u   ? "controller task"
+                                                      : "slow step");
     }
     return status;
 }
@@ -354,7 +365,7 @@ int main(void) {
     }
     fw_send_start(board_name);
     fw_send_report();
-    hal_ticks_config ticks = {fw_exec.cfg.fast_ns, fw_fast, fw_medium};
+    hal_ticks_config ticks = {fw_exec.cfg.fast_ns, fw_fast, fw_medium, fw_control};
     hal_cm_stop_on_overrun(true);
     if (!hal_ticks_start(&ticks)) {
         (void)fw_fail("the fast frame is out of the timer's range", "");

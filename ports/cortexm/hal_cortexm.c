@@ -1,8 +1,10 @@
 /*
  * The HAL on ARMv7-M (Cortex-M3/M4/M7) under QEMU or on a board:
  *   - fast tick: SysTick, the highest priority;
- *   - medium tick: PendSV, the lowest exception priority, pended by the fast
- *     tick, so the fast tick preempts it;
+ *   - medium tick: PendSV, below SysTick, pended by the fast tick, so the
+ *     fast tick preempts it;
+ *   - control tick: the board's software interrupt line (board_soft_irq),
+ *     below PendSV, pended by the medium tick, preempted by both;
  *   - background: thread mode, sleeping in WFI between ticks;
  *   - console: semihosting (buffered per line); telemetry: the board's
  *     first UART; scenario input: a host file through semihosting;
@@ -18,9 +20,10 @@
 #include "hal/hal.h"
 #include "semihost.h"
 
-/* Priorities as written to SHPR3 (upper bits significant on every core). */
+/* Priorities (upper bits significant on every core): fast > medium > control. */
 #define PRIO_FAST 0x00u
-#define PRIO_MEDIUM 0xFFu
+#define PRIO_MEDIUM 0x80u
+#define PRIO_CONTROL 0xC0u
 
 static struct {
     bool initialised;
@@ -33,7 +36,7 @@ static struct {
     uint32_t critical_saved;
     volatile uint32_t fast_overruns;
     bool stop_on_overrun;
-} hal_cm = {false, -1, -1, {0}, 0u, {0u, NULL, NULL}, 0u, 0u, 0u, false};
+} hal_cm = {false, -1, -1, {0}, 0u, {0u, NULL, NULL, NULL}, 0u, 0u, 0u, false};
 
 static void hal_cm_init(void) {
     if (!hal_cm.initialised) {
@@ -127,6 +130,9 @@ bool hal_ticks_start(const hal_ticks_config *config) {
     }
     hal_cm.ticks = *config;
     SCB_SHPR3 = (SCB_SHPR3 & 0x0000FFFFu) | (PRIO_FAST << 24) | (PRIO_MEDIUM << 16);
+    NVIC_IPR8(board_soft_irq) = (uint8_t)PRIO_CONTROL;
+    NVIC_ICPR(board_soft_irq) = NVIC_BIT(board_soft_irq);
+    NVIC_ISER(board_soft_irq) = NVIC_BIT(board_soft_irq);
     SYST_CSR = 0u;
     SYST_RVR = (uint32_t)clocks - 1u;
     SYST_CVR = 0u;
@@ -137,14 +143,19 @@ bool hal_ticks_start(const hal_ticks_config *config) {
 void hal_ticks_stop(void) {
     SYST_CSR = 0u;
     SCB_ICSR = ICSR_PENDSTCLR | ICSR_PENDSVCLR;
+    NVIC_ICPR(board_soft_irq) = NVIC_BIT(board_soft_irq);
 }
 
 void hal_medium_release(void) { SCB_ICSR = ICSR_PENDSVSET; }
+
+void hal_control_release(void) { NVIC_ISPR(board_soft_irq) = NVIC_BIT(board_soft_irq); }
 
 void hal_wait_for_tick(void) { cpu_wfi(); }
 
 void SysTick_Handler(void);
 void PendSV_Handler(void);
+void Irq_Handler(void);
+void Default_Handler(void);
 
 void hal_cm_fast_stop(void) { SYST_CSR = 0u; }
 
@@ -186,6 +197,19 @@ void PendSV_Handler(void) {
         hal_cm.ticks.medium();
     }
     /* An empty barrier: the call stays a call and the handler returns itself. */
+    __asm__ volatile("" ::: "memory");
+}
+
+/*
+ * Every external interrupt enters here (startup.c's table): the board's
+ * software line runs the control tick; any other line is unexpected.
+ */
+void Irq_Handler(void) {
+    if (cpu_ipsr() == 16u + board_soft_irq && hal_cm.ticks.control != NULL) {
+        hal_cm.ticks.control();
+    } else {
+        Default_Handler();
+    }
     __asm__ volatile("" ::: "memory");
 }
 

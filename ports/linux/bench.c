@@ -122,16 +122,16 @@ static void segment_costs(const exec_config *base, double ns[4]) {
     const int n_med = 100000;
     t0 = now_s();
     for (int i = 0; i < n_med; i++) {
-        drive_medium_task(&d, false);
+        drive_medium_task(&d, false, false);
     }
     ns[1] = 1e9 * (now_s() - t0) / n_med;
     d = ex.drive;
+    const int n_ctl = 20000;
     t0 = now_s();
-    for (int i = 0; i < n_med; i++) {
-        drive_medium_task(&d, true);
+    for (int i = 0; i < n_ctl; i++) {
+        drive_control_task(&d);
     }
-    /* The controller's own cost: a motor step with it minus one without. */
-    ns[2] = 1e9 * (now_s() - t0) / n_med - ns[1];
+    ns[2] = 1e9 * (now_s() - t0) / n_ctl;
     static vessel_model v;
     v = ex.vessel;
     double x[VESSEL_NSTATES];

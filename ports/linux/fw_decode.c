@@ -276,7 +276,7 @@ static void json_load(FILE *f, const insn_counts *c, const stream *s, int shift)
 /* ---- The summary -------------------------------------------------------------- */
 
 static const char *state_name(const tlm_end *e) {
-    if (e->overruns_fast + e->overruns_medium + e->overruns_slow > 0u) {
+    if (e->overruns_fast + e->overruns_medium + e->overruns_control + e->overruns_slow > 0u) {
         return "overrun";
     }
     return e->state == EXEC_DONE ? "done" : "stopped";
@@ -309,9 +309,11 @@ static void json_summary(FILE *f, const options *o, const stream *s, const insn_
                "\"slow\": %llu},\n",
             (unsigned long long)e->fast, (unsigned long long)e->medium,
             (unsigned long long)e->control, (unsigned long long)e->slow);
-    fprintf(f, "  \"overruns\": %u,\n", e->overruns_fast + e->overruns_medium + e->overruns_slow);
-    fprintf(f, "  \"overruns_by_rate\": {\"fast\": %u, \"medium\": %u, \"slow\": %u},\n",
-            e->overruns_fast, e->overruns_medium, e->overruns_slow);
+    fprintf(f, "  \"overruns\": %u,\n",
+            e->overruns_fast + e->overruns_medium + e->overruns_control + e->overruns_slow);
+    fprintf(f, "  \"overruns_by_rate\": {\"fast\": %u, \"medium\": %u, \"control\": %u, "
+               "\"slow\": %u},\n",
+            e->overruns_fast, e->overruns_medium, e->overruns_control, e->overruns_slow);
     fprintf(f, "  \"saturations\": %u,\n", e->saturations);
     fprintf(f, "  \"energy_wh\": %.9g,\n  \"mechanical_energy_wh\": %.9g,\n", e->e_batt_j / 3600.0,
             e->e_mech_j / 3600.0);

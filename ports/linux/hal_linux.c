@@ -1,8 +1,9 @@
 /*
  * The HAL on a Linux host: a desk loop in virtual time. The ticks are not
  * driven by a clock: hal_wait_for_tick() runs the next fast tick, and the
- * medium tick right after it when the fast tick released it, exactly the
- * order in which a target's interrupts would run them when neither overruns.
+ * medium tick right after it when the fast tick released it, and the
+ * control tick after that when the medium tick released it: exactly the
+ * order in which a target's interrupts would run them when none overruns.
  * hal_cycles() counts virtual nanoseconds.
  */
 #include "hal_linux.h"
@@ -16,6 +17,7 @@ static struct {
     hal_ticks_config ticks;
     bool running;
     bool medium_pending;
+    bool control_pending;
     uint64_t virtual_ns;
     int critical_depth;
 } hal_linux;
@@ -55,6 +57,7 @@ bool hal_ticks_start(const hal_ticks_config *config) {
     }
     hal_linux.ticks = *config;
     hal_linux.medium_pending = false;
+    hal_linux.control_pending = false;
     hal_linux.running = true;
     return true;
 }
@@ -62,6 +65,8 @@ bool hal_ticks_start(const hal_ticks_config *config) {
 void hal_ticks_stop(void) { hal_linux.running = false; }
 
 void hal_medium_release(void) { hal_linux.medium_pending = true; }
+
+void hal_control_release(void) { hal_linux.control_pending = true; }
 
 void hal_wait_for_tick(void) {
     if (!hal_linux.running) {
@@ -73,6 +78,12 @@ void hal_wait_for_tick(void) {
         hal_linux.medium_pending = false;
         if (hal_linux.ticks.medium != NULL) {
             hal_linux.ticks.medium();
+        }
+    }
+    if (hal_linux.control_pending) {
+        hal_linux.control_pending = false;
+        if (hal_linux.ticks.control != NULL) {
+            hal_linux.ticks.control();
         }
     }
 }

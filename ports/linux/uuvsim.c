@@ -86,10 +86,10 @@ static void print_json(FILE *f_out, const run_result *r) {
     fprintf(f_out, "  \"sim_time_s\": %.9g,\n  \"wall_time_s\": %.6g,\n  \"realtime_factor\": %.6g,\n",
            sim_s, r->wall_s, r->wall_s > 0.0 ? sim_s / r->wall_s : 0.0);
     fprintf(f_out, "  \"steps\": {\"fast\": %llu, \"medium\": %llu, \"control\": %llu, \"slow\": %llu},\n",
-           (unsigned long long)e->count.fast, (unsigned long long)e->count.medium,
+           (unsigned long long)exec_fast_steps(e), (unsigned long long)e->count.medium,
            (unsigned long long)e->count.control, (unsigned long long)e->count.slow);
     fprintf(f_out, "  \"overruns\": %u,\n  \"saturations\": %u,\n",
-           e->count.overruns_medium + e->count.overruns_slow, e->count.saturations);
+           exec_overruns(e), e->count.saturations);
     fprintf(f_out, "  \"energy_wh\": %.9g,\n  \"mechanical_energy_wh\": %.9g,\n",
            e->count.e_batt_j / 3600.0, e->count.e_mech_j / 3600.0);
     if (r->o->realtime) {
@@ -135,9 +135,9 @@ static void print_text(const run_result *r) {
     if (e->cfg.plant == EXEC_PLANT_FULL) {
         printf("steps: %llu fast, %llu motor, %llu control, %llu slow; %u overruns, "
                "%u saturations\n",
-               (unsigned long long)e->count.fast, (unsigned long long)e->count.medium,
+               (unsigned long long)exec_fast_steps(e), (unsigned long long)e->count.medium,
                (unsigned long long)e->count.control, (unsigned long long)e->count.slow,
-               e->count.overruns_medium + e->count.overruns_slow, e->count.saturations);
+               exec_overruns(e), e->count.saturations);
         printf("battery: %.1f Wh drawn, state of charge %.4f, DC link %.1f V\n",
                e->count.e_batt_j / 3600.0, e->bat.soc, f->v_dc_v);
     }
@@ -236,7 +236,7 @@ static int run(const cli_options *o) {
     double next_progress = w0 + 0.5;
     while (e.state == EXEC_RUNNING) {
         exec_desk_step(&e);
-        if (trace.f != NULL && e.count.fast >= trace_first && e.count.fast <= trace_last &&
+        if (trace.f != NULL && exec_fast_steps(&e) >= trace_first && exec_fast_steps(&e) <= trace_last &&
             full) {
             drive_trace_row row;
             drive_trace(&e.drive, &row);

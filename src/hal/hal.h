@@ -4,13 +4,15 @@
  * (ports/linux, ports/cortexm) implements all of them in its own folder.
  *
  * Execution model. A port runs one background context (main and what it
- * calls) and two periodic tick contexts:
+ * calls) and three tick contexts:
  *   - the fast tick, at the highest priority, every `fast_period_ns` of the
  *     port's time base;
  *   - the medium tick, at a lower priority, released by the fast tick with
- *     hal_medium_release() and preemptible by the fast tick.
- * On Cortex-M these are a hardware timer interrupt and a pended software
- * interrupt; on Linux a virtual-time loop calls them in the same order.
+ *     hal_medium_release() and preemptible by the fast tick;
+ *   - the control tick, lower again, released by the medium tick with
+ *     hal_control_release() and preemptible by both.
+ * On Cortex-M these are a hardware timer interrupt and two pended software
+ * interrupts; on Linux a virtual-time loop calls them in the same order.
  * Results never depend on which of the two it is (see src/ executive).
  */
 #ifndef UUV_HAL_H
@@ -62,6 +64,7 @@ typedef struct {
     uint32_t fast_period_ns; /* [ns] period of the fast tick */
     hal_tick_fn fast;        /* fast tick handler, highest priority */
     hal_tick_fn medium;      /* medium tick handler, released by the fast one */
+    hal_tick_fn control;     /* control tick handler, released by the medium one (may be NULL) */
 } hal_ticks_config;
 
 /*
@@ -75,6 +78,9 @@ void hal_ticks_stop(void);
 
 /* Releases one run of the medium tick (callable from the fast tick). */
 void hal_medium_release(void);
+
+/* Releases one run of the control tick (callable from the medium tick). */
+void hal_control_release(void);
 
 /*
  * Waits in the background context until a tick has run (sleep until the

@@ -23,14 +23,14 @@ static void medium_tick(void) { medium_count++; }
 
 void suite_hal(void) {
     UT_TEST("ticks: a period the timer cannot make is refused");
-    hal_ticks_config bad = {0u, fast_tick, medium_tick};
+    hal_ticks_config bad = {0u, fast_tick, medium_tick, NULL};
     UT_CHECK(!hal_ticks_start(&bad));
     UT_CHECK(!hal_ticks_start(NULL));
 
     UT_TEST("ticks: fast ticks run and release one medium tick per five");
     fast_count = 0u;
     medium_count = 0u;
-    hal_ticks_config cfg = {100000u, fast_tick, medium_tick};
+    hal_ticks_config cfg = {100000u, fast_tick, medium_tick, NULL};
     uint32_t c0 = hal_cycles();
     UT_CHECK(hal_ticks_start(&cfg));
     for (uint32_t guard = 0; guard < 1000000u && fast_count < 100u; guard++) {

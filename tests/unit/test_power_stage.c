@@ -20,6 +20,7 @@
 #include "models/inverter_avg.h"
 #include "models/power_stage.h"
 #include "models/power_stage_fast.h"
+#include "models/pwm_rt.h"
 #include "models/power_stage_nodes.h"
 #include "models/pwm.h"
 #include "power_test_dft.h"
@@ -901,57 +902,48 @@ static void test_setup_and_outputs(void) {
 }
 
 /*
- * The fused fast step (power_stage_fast.h) against the general functions:
- * the closed-form carrier against the table lookup at strided phases and
- * around every node and the peak; then pwm_step (sampled edges) followed by
- * power_stage_step, and the fused step, on two copies of the same instances
- * with the same motor currents (a 50 Hz set of the given amplitude), every
- * state and the clamp count compared bit for bit after every step.
+ * The fast step with held switch states (power_stage_fast.h) against the
+ * general step: states from the real-time modulator (pwm_rt.h, m = 0.9 at
+ * 50 Hz, ramps over 50-step frames), the general step given the same
+ * states as duties of 0 or 1, on two copies of the same instance with the
+ * same motor currents (a 50 Hz set of the given amplitude); every state and
+ * the clamp count compared bit for bit after every step.
  */
 static void test_fused_step(int fixed, double amp_a, uint32_t steps) {
     static const pwm_params sampled = {5000.0, PWM_EDGES_SAMPLED, 0u, 0u};
     const uint32_t inc = wt_phase_inc_q16(50 * 65536, STEP_NS);
-    uint32_t ph;
     uint32_t k;
     int same = 1;
     uint32_t sat = 0u;
-    for (ph = 0u; ph < 0xFFFFF000u; ph += 4093u * 128u + 37u) {
-        same &= (ps_fast_tri_q15(ph) == wt_tri_q15(ph)) && (ps_fast_tri_f32(ph) == wt_tri_f32(ph));
-    }
-    for (k = 0u; k < 1024u; k++) {
-        for (ph = (k << 22) - 640u; ph != (k << 22) + 640u; ph += 128u) {
-            same &= (ps_fast_tri_q15(ph) == wt_tri_q15(ph)) &&
-                    (ps_fast_tri_f32(ph) == wt_tri_f32(ph));
-        }
-    }
-    UT_CHECK(same);
+    pwm_rt rt;
+    uint32_t ref_ph = 0u;
+    UT_CHECK(pwm_rt_init(&rt, &sampled, STEP_NS) == PWM_OK);
     if (fixed) {
-        pwm_q pa, pb;
         power_stage_q sa, sb;
         power_stage_in_q in = {{0, 0, 0}, {0, 0, 0}, {0, 0, 0}};
-        pwm_init_q(&pa, &sampled, STEP_NS);
-        pwm_command_inc_q(&pa, 29491, inc);
         power_stage_init_q(&sa, &power_stage_params_default, STEP_NS, 600.0);
         power_stage_battery_q(&sa, 2.0, 1200.0, &in.battery);
-        pb = pa;
         sb = sa;
         for (k = 0u; k < steps; k++) {
-            pwm_out_q o;
-            uint8_t st[3];
+            int32_t st[3];
             double w = 2.0 * PI_D * 50.0 * STEP_S * (double)k;
+            if (k % 50u == 0u) {
+                pwm_rt_ramp ramp;
+                pwm_rt_ramp_q(&ramp, 29491, ref_ph, inc, 50u);
+                pwm_rt_apply(&rt, &ramp);
+                ref_ph += 50u * inc;
+            }
             in.i_motor[0] = fp_from_f64_q15(amp_a / 256.0 * math_sin_f64(w));
             in.i_motor[1] = fp_from_f64_q15(amp_a / 256.0 * math_sin_f64(w - 2.0 * PI_D / 3.0));
-            pwm_step_q(&pa, &o);
-            in.duty[0] = o.duty[0];
-            in.duty[1] = o.duty[1];
-            in.duty[2] = o.duty[2];
+            pwm_rt_step(&rt, st);
+            for (unsigned x = 0u; x < 3u; x++) {
+                in.duty[x] = st[x] * PWM_DUTY_ONE_Q;
+            }
             power_stage_step_q(&sa, &in);
-            ps_fast_step_q(&pb, &sb, &in.battery, in.i_motor[0], in.i_motor[1], st);
+            ps_fast_step_q(&sb, &in.battery, st, (int32_t)in.i_motor[0] * 8192,
+                           (int32_t)in.i_motor[1] * 8192);
             same &= sa.v_dc == sb.v_dc && sa.i_dc == sb.i_dc && sa.u[0] == sb.u[0] &&
-                    sa.u[1] == sb.u[1] && sa.sat_count == sb.sat_count &&
-                    pa.ph_c == pb.ph_c && pa.ph_s == pb.ph_s && pa.e[0] == pb.e[0] &&
-                    pa.e[1] == pb.e[1] && pa.e[2] == pb.e[2] && o.state[0] == st[0] &&
-                    o.state[1] == st[1] && o.state[2] == st[2];
+                    sa.u[1] == sb.u[1] && sa.sat_count == sb.sat_count;
             for (unsigned x = 0u; x < 2u; x++) {
                 same &= sa.ph[x].i_l == sb.ph[x].i_l && sa.ph[x].v_c == sb.ph[x].v_c &&
                         sa.ph[x].i_d == sb.ph[x].i_d && sa.ph[x].j_sh == sb.ph[x].j_sh;
@@ -959,32 +951,30 @@ static void test_fused_step(int fixed, double amp_a, uint32_t steps) {
         }
         sat = sb.sat_count;
     } else {
-        pwm_f32 pa, pb;
         power_stage_f32 sa, sb;
         power_stage_in_f32 in = {{0.0f, 0.0f, 0.0f}, {0.0f, 0.0f, 0.0f}, {0.0f, 0.0f, 0.0f}};
-        pwm_init_f32(&pa, &sampled, STEP_NS);
-        pwm_command_inc_f32(&pa, 0.9f, inc);
         power_stage_init_f32(&sa, &power_stage_params_default, STEP_NS, 600.0);
         power_stage_battery_f32(&sa, 2.0, 1200.0, &in.battery);
-        pb = pa;
         sb = sa;
         for (k = 0u; k < steps; k++) {
-            pwm_out_f32 o;
-            uint8_t st[3];
+            int32_t st[3];
             float w = (float)(2.0 * PI_D * 50.0 * STEP_S * (double)k);
+            if (k % 50u == 0u) {
+                pwm_rt_ramp ramp;
+                pwm_rt_ramp_f32(&ramp, 0.9f, ref_ph, inc, 50u);
+                pwm_rt_apply(&rt, &ramp);
+                ref_ph += 50u * inc;
+            }
             in.i_motor_a[0] = (float)amp_a * math_sin_f32(w);
             in.i_motor_a[1] = (float)amp_a * math_sin_f32(w - 2.0943951f);
-            pwm_step_f32(&pa, &o);
-            in.duty[0] = o.duty[0];
-            in.duty[1] = o.duty[1];
-            in.duty[2] = o.duty[2];
+            pwm_rt_step(&rt, st);
+            for (unsigned x = 0u; x < 3u; x++) {
+                in.duty[x] = (float)st[x];
+            }
             power_stage_step_f32(&sa, &in);
-            ps_fast_step_f32(&pb, &sb, &in.battery, in.i_motor_a[0], in.i_motor_a[1], st);
+            ps_fast_step_f32(&sb, &in.battery, st, in.i_motor_a[0], in.i_motor_a[1]);
             same &= sa.v_dc == sb.v_dc && sa.i_dc == sb.i_dc && sa.u[0] == sb.u[0] &&
-                    sa.u[1] == sb.u[1] && sa.sat_count == sb.sat_count &&
-                    pa.ph_c == pb.ph_c && pa.ph_s == pb.ph_s && pa.e[0] == pb.e[0] &&
-                    pa.e[1] == pb.e[1] && pa.e[2] == pb.e[2] && o.state[0] == st[0] &&
-                    o.state[1] == st[1] && o.state[2] == st[2];
+                    sa.u[1] == sb.u[1] && sa.sat_count == sb.sat_count;
             for (unsigned x = 0u; x < 2u; x++) {
                 same &= sa.ph[x].i_l == sb.ph[x].i_l && sa.ph[x].v_c == sb.ph[x].v_c &&
                         sa.ph[x].i_d == sb.ph[x].i_d && sa.ph[x].j_sh == sb.ph[x].j_sh;
@@ -992,8 +982,8 @@ static void test_fused_step(int fixed, double amp_a, uint32_t steps) {
         }
         sat = sb.sat_count;
     }
-    ut_info("fused step, %s, %u steps at %g A: identical %d, clamps %u", fixed ? "fixed" : "float",
-            (unsigned)steps, amp_a, same, (unsigned)sat);
+    ut_info("held-state step, %s, %u steps at %g A: identical %d, clamps %u",
+            fixed ? "fixed" : "float", (unsigned)steps, amp_a, same, (unsigned)sat);
     UT_CHECK(same);
     UT_CHECK((amp_a > 256.0) == (sat > 0u));
 }
@@ -1033,8 +1023,8 @@ void suite_power_stage(void) {
     }
     UT_TEST("parameter checks, battery conversion, outputs and sign conventions");
     test_setup_and_outputs();
-    UT_TEST("fused modulator and stage step (sampled edges) equals pwm_step + "
-            "power_stage_step bit for bit, clamps included");
+    UT_TEST("stage step with held switch states equals power_stage_step with duties 0 or 1, "
+            "bit for bit, clamps included");
     for (fixed = 1; fixed >= 0; fixed--) {
         test_fused_step(fixed, 120.0, 20000u);
         test_fused_step(fixed, 400.0, 2000u);

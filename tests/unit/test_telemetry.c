@@ -109,7 +109,7 @@ static void test_start_end(void) {
     UT_CHECK(s2.medium_per_slow == 1000u && s2.frames == 20u && same_bits(s2.duration_s, 2.0));
     UT_CHECK(s2.machine[0] == 'm' && s2.machine[9] == '6' && s2.machine[10] == '\0');
 
-    tlm_end e = {1u, 0u, 1000000u, 20000u, 2500u, 20u, 1u, 2u, 3u, 4u, -1.5e6, 2.5e5, 1234u};
+    tlm_end e = {1u, 0u, 1000000u, 20000u, 2500u, 20u, 1u, 2u, 5u, 3u, 4u, -1.5e6, 2.5e5, 1234u};
     tlm_end e2;
     e.fast = 0x0123456789ABCDEFull;
     n = tlm_encode_end(buf, 7u, &e);
@@ -118,7 +118,8 @@ static void test_start_end(void) {
     tlm_decode_end(&f, &e2);
     UT_CHECK(e2.state == 1u && e2.exit_status == 0u && e2.fast == 0x0123456789ABCDEFull);
     UT_CHECK(e2.medium == 20000u && e2.control == 2500u && e2.slow == 20u);
-    UT_CHECK(e2.overruns_fast == 1u && e2.overruns_medium == 2u && e2.overruns_slow == 3u);
+    UT_CHECK(e2.overruns_fast == 1u && e2.overruns_medium == 2u && e2.overruns_control == 5u &&
+             e2.overruns_slow == 3u);
     UT_CHECK(e2.saturations == 4u && same_bits(e2.e_batt_j, -1.5e6));
     UT_CHECK(same_bits(e2.e_mech_j, 2.5e5) && e2.stack_used_bytes == 1234u);
 }
