@@ -138,7 +138,7 @@ typedef enum {
 typedef struct {
     int64_t v_cap[2];  /* capacitor voltages a, b (c = -a - b) */
     int64_t v_dc;      /* DC-link voltage */
-    q31_t i_mark[2];   /* the fast motor currents a, b at the boundary, Q31 of 256 A */
+    int32_t i_mark[2]; /* the fast motor currents a, b at the boundary, Q3.28 of 256 A */
     int32_t v_mark[2]; /* capacitor voltages at the boundary (sampled coupling), Q3.28 */
     int64_t filt_mark[2]; /* filtered capacitor voltages at the boundary, Q3.28 << 16 */
     uint32_t sat;      /* the fast models' saturation count at the boundary */
@@ -149,7 +149,7 @@ typedef struct {
     pwm_rt_ramp ramp;          /* references of the real-time modulator */
     int32_t e[2];              /* EMF at the frame start, Q3.28 of 1024 V */
     int32_t de[2];             /* its change per fast step (FOH, DERIV) */
-    q31_t corr[2];             /* motor minus fast current at the last frame end */
+    int32_t corr[2];           /* motor minus fast current at the last frame end, Q3.28 */
     bool cmd_new;              /* a new command for the general modulators */
     drive_control_out_q cmd;
 } drive_latch;
@@ -178,11 +178,12 @@ typedef struct {
     pwm_out_q pout;             /* the general modulator's last step */
     power_stage_in_q in;        /* duties, motor currents (Q15), battery: the fast inputs */
     /* The motor's fast companion (see drive_segment.h): currents a, b, EMF. */
-    q31_t i_fast[2];            /* Q31 of 256 A */
+    int32_t i_fast[2];          /* Q3.28 of 256 A (the power stage's format) */
     int32_t e[2];               /* Q3.28 of 1024 V, the EMF in force */
     int32_t e_step[2];          /* its change per fast step (FOH, DERIV) */
-    int32_t k_mant;             /* a_ss h1 * 32 (Q31 current step per Q3.28 volt) as */
-    uint32_t k_shift;           /* mantissa and right shift */
+    int32_t k32;                /* a_ss h1 * 4 * 2^32: Q3.28 current step per Q3.28 volt */
+    int32_t k_mant;             /* the same as mantissa and right shift, for any step */
+    uint32_t k_shift;
     int32_t e_mant;             /* 1 / (k_l N) as mantissa ... */
     uint32_t e_shift;           /* ... and shift: Q3.28 volts per Q31 current change */
     int64_t filt[2];            /* filtered capacitor voltages (COUPLE_FILTER), Q3.28 << 16 */

@@ -70,13 +70,16 @@ drive_status drive_init(drive_segment *d, const drive_config *cfg, const propell
         INDUCTION_MOTOR_OK) {
         return DRIVE_ERR_MODEL;
     }
-    /* The fast companion: a_ss h1 in Q31 current per Q3.28 volt (x 2^31/2^28 x 1024/256). */
-    double k_l = d->motor.c.a_ss * fast_s * 32.0;
-    if (!(k_l > 1e-6 && k_l < 64.0)) {
+    /* The fast companion: a_ss h1 in Q3.28 current (256 A) per Q3.28 volt (1024 V). */
+    double k_l = d->motor.c.a_ss * fast_s * 4.0;
+    if (!(k_l > 1e-7 && k_l < 8.0)) {
         return DRIVE_ERR_CONFIG;
     }
     factor_split(k_l, &d->k_mant, &d->k_shift);
-    factor_split(1.0 / (k_l * (double)cfg->fast_per_medium), &d->e_mant, &d->e_shift);
+    /* The real-time path's form: k_l 2^32 (below 2^31, at least 2^20 for precision). */
+    d->k32 = (k_l < 0.5 && k_l > 2.5e-4) ? (int32_t)(k_l * 4294967296.0 + 0.5) : 0;
+    /* The EMF's current drop per Q31 (motor) current change: 1 / (8 k_l N). */
+    factor_split(1.0 / (8.0 * k_l * (double)cfg->fast_per_medium), &d->e_mant, &d->e_shift);
     d->ctl_params = drive_control_params_default;
     d->ctl_params.step_s = medium_s * (double)cfg->medium_per_control;
     d->ctl_params.pwm_step_s = 1e-9 * (double)mod_ns;
@@ -87,32 +90,23 @@ drive_status drive_init(drive_segment *d, const drive_config *cfg, const propell
     d->filt_k = (uint32_t)(65536u / cfg->fast_per_medium);
     d->k_deriv = fp_from_f64_q31(6.283185307179586 * DRIVE_BASE_FREQ_HZ * fast_s /
                                  1.7320508075688772);
-    d->plain = (cfg->inverter == DRIVE_INVERTER_SWITCHING) &&
+    d->plain = (d->k32 != 0) && (cfg->inverter == DRIVE_INVERTER_SWITCHING) &&
                (cfg->down == COUPLE_ZOH || cfg->down == COUPLE_STAGGER) &&
                (cfg->up != COUPLE_FILTER);
     return DRIVE_OK;
 }
 
 /*
- * The fast companion's current step floor((v - e) k_mant / 2^k_shift), Q31
- * of 256 A. At the 2 us step k_shift is 37 or so: the floor is then taken in
- * two exact stages, the high word of the 64-bit product (floor by 2^32)
- * and a 32-bit floor shift by the rest (floor(floor(p / 2^32) / 2^s) =
- * floor(p / 2^(32 + s))), which on a 32-bit core is one SMULL and three
- * instructions instead of a 64-bit variable shift. Long steps (the averaged
- * inverter at the motor frame) take the general 64-bit shift.
+ * The fast companion's current step in the general path: round((v - e)
+ * k_mant / 2^k_shift), Q3.28 of 256 A, for any step length.
  */
-static inline q31_t fast_current_step(int32_t dv, int32_t mant, uint32_t shift) {
-    int64_t p = (int64_t)dv * mant;
-    if (shift >= 32u) {
-        return fp_shr_floor_i32((int32_t)fp_shr_floor_i64(p, 32u), shift - 32u);
-    }
-    return (q31_t)fp_shr_floor_i64(p, shift);
+static inline int32_t fast_current_step(int32_t dv, int32_t mant, uint32_t shift) {
+    return (int32_t)fp_shr_round_i64((int64_t)dv * mant, shift);
 }
 
-/* The companion current in the power stage's Q3.28 (of 256 A): Q31 / 8, floored. */
-static inline int32_t stage_current(q31_t i) {
-    return fp_shr_floor_i32(i, 3u);
+/* The Q15 motor currents of the general power stage, from the Q3.28 companion. */
+static inline q15_t stage_current_q15(int32_t i) {
+    return fp_sat_q15(fp_shr_round_i32(i, 13u));
 }
 
 /*
@@ -123,12 +117,12 @@ static inline int32_t stage_current(q31_t i) {
 static inline void fast_tick_plain(drive_segment *d) {
     power_stage_q *ps = &d->ps;
     pwm_rt_step(&d->rt, d->s);
-    ps_fast_step_q(ps, &d->in.battery, d->s, stage_current(d->i_fast[0]),
-                   stage_current(d->i_fast[1]));
+    ps_fast_step_q(ps, &d->in.battery, d->s, d->i_fast[0], d->i_fast[1]);
     const int32_t va = ps->ph[0].v_c;
     const int32_t vb = ps->ph[1].v_c;
-    d->i_fast[0] += fast_current_step(va - d->e[0], d->k_mant, d->k_shift);
-    d->i_fast[1] += fast_current_step(vb - d->e[1], d->k_mant, d->k_shift);
+    /* i + round((v - e) k32 / 2^32): one multiply-accumulate per phase. */
+    d->i_fast[0] = ps_hi_q(ps_mac_q(ps_acc_q(d->i_fast[0]), va - d->e[0], d->k32));
+    d->i_fast[1] = ps_hi_q(ps_mac_q(ps_acc_q(d->i_fast[1]), vb - d->e[1], d->k32));
     d->sums.v_cap[0] += va;
     d->sums.v_cap[1] += vb;
     d->sums.v_dc += ps->v_dc;
@@ -136,20 +130,23 @@ static inline void fast_tick_plain(drive_segment *d) {
 
 /* Every other configuration: the general modulators, a moving EMF, the filter coupling. */
 static void fast_tick_general(drive_segment *d) {
-    if (d->cfg.inverter == DRIVE_INVERTER_SWITCHING) {
-        pwm_rt_step(&d->rt, d->s);
-        ps_fast_step_q(&d->ps, &d->in.battery, d->s, stage_current(d->i_fast[0]),
-                       stage_current(d->i_fast[1]));
+    if (d->cfg.inverter == DRIVE_INVERTER_AVERAGED) {
+        inverter_avg_step_q(&d->avg, &d->in);
     } else {
-        if (d->cfg.inverter == DRIVE_INVERTER_AVERAGED) {
-            inverter_avg_step_q(&d->avg, &d->in);
+        if (d->cfg.inverter == DRIVE_INVERTER_SWITCHING) {
+            /* The real-time modulator's held states as duties: the general
+             * stage gives the fused step's results bit for bit. */
+            pwm_rt_step(&d->rt, d->s);
+            for (int x = 0; x < 3; x++) {
+                d->in.duty[x] = d->s[x] * PWM_DUTY_ONE_Q;
+            }
         } else {
             pwm_step_q(&d->pwm, &d->pout);
             d->in.duty[0] = d->pout.duty[0];
             d->in.duty[1] = d->pout.duty[1];
             d->in.duty[2] = d->pout.duty[2];
-            power_stage_step_q(&d->ps, &d->in);
         }
+        power_stage_step_q(&d->ps, &d->in);
     }
     const power_stage_q *ps = d->stage;
     const int32_t va = ps->ph[0].v_c;
@@ -159,8 +156,8 @@ static void fast_tick_general(drive_segment *d) {
     d->e[1] += d->e_step[1];
     d->i_fast[0] += fast_current_step(va - d->e[0], d->k_mant, d->k_shift);
     d->i_fast[1] += fast_current_step(vb - d->e[1], d->k_mant, d->k_shift);
-    d->in.i_motor[0] = fp_narrow_q15(d->i_fast[0]);
-    d->in.i_motor[1] = fp_narrow_q15(d->i_fast[1]);
+    d->in.i_motor[0] = stage_current_q15(d->i_fast[0]);
+    d->in.i_motor[1] = stage_current_q15(d->i_fast[1]);
     d->sums.v_cap[0] += va;
     d->sums.v_cap[1] += vb;
     d->sums.v_dc += ps->v_dc;
@@ -188,8 +185,8 @@ void drive_medium_latch(drive_segment *d) {
     if (!d->plain) {
         d->e_step[0] = o->de[0];
         d->e_step[1] = o->de[1];
-        d->in.i_motor[0] = fp_narrow_q15(d->i_fast[0]);
-        d->in.i_motor[1] = fp_narrow_q15(d->i_fast[1]);
+        d->in.i_motor[0] = stage_current_q15(d->i_fast[0]);
+        d->in.i_motor[1] = stage_current_q15(d->i_fast[1]);
         if (d->out.cmd_new) {
             pwm_command_inc_q(d->mod, o->cmd.m, o->cmd.phase_inc);
             d->out.cmd_new = false;
@@ -303,7 +300,8 @@ void drive_medium_task(drive_segment *d, bool control_due, bool slow_boundary) {
     q31_t v_mean[2] = {min.v_a, min.v_b};
     emf_update(d, v_mean, i_end);
     for (int x = 0; x < 2; x++) {
-        d->out.corr[x] = fp_sat_q31((int64_t)i_end[x] - s->i_mark[x]);
+        /* Q31 to the companion's Q3.28: three bits down. */
+        d->out.corr[x] = fp_shr_round_i32(i_end[x], 3u) - s->i_mark[x];
         d->i_prev[x] = i_end[x];
     }
     slow_sums_add(d, s, i_end);
@@ -409,7 +407,7 @@ void drive_trace(const drive_segment *d, drive_trace_row *row) {
     row->v_cap[1] = (double)ps->ph[1].v_c * v;
     row->v_cap[2] = -row->v_cap[0] - row->v_cap[1];
     for (int x = 0; x < 2; x++) {
-        row->i_motor[x] = (double)d->i_fast[x] / Q31_ONE * DRIVE_BASE_CURRENT_A;
+        row->i_motor[x] = (double)d->i_fast[x] / Q28_ONE * DRIVE_BASE_CURRENT_A;
     }
     row->i_motor[2] = -row->i_motor[0] - row->i_motor[1];
     row->i_dc = (double)ps->i_dc / Q28_ONE * DRIVE_BASE_CURRENT_A;

@@ -84,19 +84,22 @@ static inline void fast_tick_plain(drive_segment *d) {
 
 /* Every other configuration: the general modulators, a moving EMF, the filter coupling. */
 static void fast_tick_general(drive_segment *d) {
-    if (d->cfg.inverter == DRIVE_INVERTER_SWITCHING) {
-        pwm_rt_step(&d->rt, d->s);
-        ps_fast_step_f32(&d->ps, &d->in.battery, d->s, d->i_fast[0], d->i_fast[1]);
+    if (d->cfg.inverter == DRIVE_INVERTER_AVERAGED) {
+        inverter_avg_step_f32(&d->avg, &d->in);
     } else {
-        if (d->cfg.inverter == DRIVE_INVERTER_AVERAGED) {
-            inverter_avg_step_f32(&d->avg, &d->in);
+        if (d->cfg.inverter == DRIVE_INVERTER_SWITCHING) {
+            /* The held states as duties: the fused step's results bit for bit. */
+            pwm_rt_step(&d->rt, d->s);
+            for (int x = 0; x < 3; x++) {
+                d->in.duty[x] = (float)d->s[x];
+            }
         } else {
             pwm_step_f32(&d->pwm, &d->pout);
             d->in.duty[0] = d->pout.duty[0];
             d->in.duty[1] = d->pout.duty[1];
             d->in.duty[2] = d->pout.duty[2];
-            power_stage_step_f32(&d->ps, &d->in);
         }
+        power_stage_step_f32(&d->ps, &d->in);
     }
     const power_stage_f32 *ps = d->stage;
     const float va = ps->ph[0].v_c;
