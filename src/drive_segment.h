@@ -97,6 +97,28 @@ typedef struct {
     double b_a; /* [A] */
 } drive_battery;
 
+/*
+ * Drive faults (scenario fault commands), requested by the slow segment and
+ * applied at the next slow boundary, so that the fast step sees them at the
+ * same step in every port.
+ */
+typedef struct {
+    uint8_t switch_open;      /* 0: none; 1..6: a+ a- b+ b- c+ c- stuck open */
+    uint8_t leg_short;        /* 0: none; 1..3: leg a, b, c shoot-through (trips) */
+    double dc_cap_frac;       /* [-] DC-link capacitance left, (0, 1] */
+    double current_offset_a;  /* [A] offset of the controller's phase-a measurement */
+} drive_faults;
+
+/* Why the drive's protection blocked the gates (0: it has not). */
+typedef enum {
+    DRIVE_TRIP_NONE = 0,
+    DRIVE_TRIP_LEG_SHORT,     /* desaturation of a shorted leg */
+    DRIVE_TRIP_UNDERVOLTAGE   /* DC link below DRIVE_UV_TRIP_V */
+} drive_trip;
+
+/* [V] under-voltage trip of the DC link (the pack's cut-off is 432 V). */
+#define DRIVE_UV_TRIP_V 300.0
+
 /* What the drive reports to the slow segment, once per slow frame. */
 typedef struct {
     drive_battery battery;   /* the battery companion that was in force over the frame */
@@ -111,6 +133,7 @@ typedef struct {
     double f_hz;             /* [Hz] stator frequency in force */
     double e_mech_j;         /* [J] mechanical energy delivered to the shaft in the frame */
     uint32_t saturations;    /* fixed-point saturation events so far (all drive models) */
+    drive_trip trip;         /* the protection's state at the boundary */
 } drive_slow_meas;
 
 /* One row of the fast trace (SI units). */
@@ -162,6 +185,7 @@ typedef struct {
     int32_t v_dc_end;          /* Q3.28 of 1024 V */
     drive_control_out_q cmd;   /* the command in force at the boundary */
     uint32_t saturations;
+    uint8_t trip;              /* drive_trip at the boundary */
 } drive_slow_sums;
 
 typedef struct {
@@ -217,6 +241,16 @@ typedef struct {
     bool battery_new;
     drive_battery bat_next, bat_in_force, bat_done; /* the same in SI: next, now, last frame */
     uint32_t ps_clamps;         /* battery companion values clamped by the power stage */
+    /* Faults: requested by the slow segment, applied at a slow boundary. */
+    drive_faults fault, fault_next;
+    bool fault_new;
+    int32_t neg_k_c_next;       /* the DC-link coefficient for fault_next */
+    q31_t i_offset, i_offset_next; /* the current-sensor offset, Q31 of 256 A */
+    int32_t uv_q28;             /* DRIVE_UV_TRIP_V, Q3.28 of 1024 V */
+    power_stage_params ps_params; /* the stage's parameters, the capacitance as faulted */
+    uint8_t trip;               /* drive_trip: written by the fast step only */
+    bool uv_req;                /* the motor task saw an under-voltage (latched next) */
+    bool plain_ok;              /* the configuration allows the real-time path */
 } drive_segment;
 
 #else /* UUV_NUMERIC_FLOAT */
@@ -247,6 +281,7 @@ typedef struct {
     float v_dc_end;            /* [V] */
     drive_control_out_f32 cmd;
     uint32_t saturations;
+    uint8_t trip;
 } drive_slow_sums;
 
 typedef struct {
@@ -291,6 +326,15 @@ typedef struct {
     bool battery_new;
     drive_battery bat_next, bat_in_force, bat_done;
     uint32_t ps_clamps;
+    /* Faults: requested by the slow segment, applied at a slow boundary. */
+    drive_faults fault, fault_next;
+    bool fault_new;
+    float neg_k_c_next;         /* [ohm] the DC-link coefficient for fault_next */
+    float i_offset, i_offset_next; /* [A] the current-sensor offset */
+    power_stage_params ps_params;
+    uint8_t trip;
+    bool uv_req;
+    bool plain_ok;
 } drive_segment;
 
 #endif
@@ -339,6 +383,13 @@ void drive_speed_command(drive_segment *d, double speed_radps);
  */
 void drive_slow_measure(const drive_segment *d, drive_slow_meas *meas);
 void drive_battery_next(drive_segment *d, const drive_battery *next);
+
+/*
+ * Requests faults (the slow segment, in the background): they replace the
+ * ones in force at the next slow boundary. The DC-link coefficients are
+ * computed here, not in the fast step.
+ */
+void drive_fault_request(drive_segment *d, const drive_faults *f);
 
 /* The fast signals now, in SI units, for the trace. */
 void drive_trace(const drive_segment *d, drive_trace_row *row);

@@ -45,11 +45,13 @@ drive_status drive_init(drive_segment *d, const drive_config *cfg, const propell
     }
     *d = (drive_segment){0};
     d->cfg = *cfg;
+    d->ps_params = power_stage_params_default;
+    d->fault.dc_cap_frac = 1.0;
     double fast_s = 1e-9 * (double)cfg->fast_ns;
     double medium_s = fast_s * (double)cfg->fast_per_medium;
     uint32_t mod_ns = cfg->fast_ns;
     if (cfg->inverter == DRIVE_INVERTER_AVERAGED) {
-        if (inverter_avg_init_q(&d->avg, &pwm_located, &power_stage_params_default, cfg->fast_ns,
+        if (inverter_avg_init_q(&d->avg, &pwm_located, &d->ps_params, cfg->fast_ns,
                                 cfg->averaged_substeps, cfg->v_dc0_v) != INVERTER_AVG_OK) {
             return DRIVE_ERR_MODEL;
         }
@@ -59,7 +61,7 @@ drive_status drive_init(drive_segment *d, const drive_config *cfg, const propell
     } else {
         if (pwm_init_q(&d->pwm, &pwm_located, cfg->fast_ns) != PWM_OK ||
             pwm_rt_init(&d->rt, &pwm_sampled, cfg->fast_ns) != PWM_OK ||
-            power_stage_init_q(&d->ps, &power_stage_params_default, cfg->fast_ns,
+            power_stage_init_q(&d->ps, &d->ps_params, cfg->fast_ns,
                                cfg->v_dc0_v) != PS_OK) {
             return DRIVE_ERR_MODEL;
         }
@@ -90,9 +92,12 @@ drive_status drive_init(drive_segment *d, const drive_config *cfg, const propell
     d->filt_k = (uint32_t)(65536u / cfg->fast_per_medium);
     d->k_deriv = fp_from_f64_q31(6.283185307179586 * DRIVE_BASE_FREQ_HZ * fast_s /
                                  1.7320508075688772);
-    d->plain = (d->k32 != 0) && (cfg->inverter == DRIVE_INVERTER_SWITCHING) &&
+    d->plain_ok = (d->k32 != 0) && (cfg->inverter == DRIVE_INVERTER_SWITCHING) &&
                (cfg->down == COUPLE_ZOH || cfg->down == COUPLE_STAGGER) &&
                (cfg->up != COUPLE_FILTER);
+    d->plain = d->plain_ok;
+    d->uv_q28 = fp_from_f64_q31(DRIVE_UV_TRIP_V / DRIVE_BASE_VOLTAGE_V / 8.0);
+    d->neg_k_c_next = d->stage->k.neg_k_c;
     return DRIVE_OK;
 }
 
@@ -128,6 +133,27 @@ static inline void fast_tick_plain(drive_segment *d) {
     d->sums.v_dc += ps->v_dc;
 }
 
+/*
+ * The leg states the faults leave (see drive_faults): a leg whose
+ * commanded switch is open, or every leg once the protection has blocked
+ * the gates, takes the state its diodes give: the upper diode conducts when
+ * the inductor current flows into the leg (i_L < 0), the lower one
+ * otherwise.
+ */
+static void faulted_states(drive_segment *d) {
+    const int32_t i_l[3] = {d->ps.ph[0].i_l, d->ps.ph[1].i_l,
+                            -d->ps.ph[0].i_l - d->ps.ph[1].i_l};
+    for (uint32_t x = 0u; x < 3u; x++) {
+        const int32_t diode = (i_l[x] < 0) ? 1 : 0;
+        const bool upper_open = d->fault.switch_open == 2u * x + 1u;
+        const bool lower_open = d->fault.switch_open == 2u * x + 2u;
+        if (d->trip != (uint8_t)DRIVE_TRIP_NONE || (upper_open && d->s[x] == 1) ||
+            (lower_open && d->s[x] == 0)) {
+            d->s[x] = diode;
+        }
+    }
+}
+
 /* Every other configuration: the general modulators, a moving EMF, the filter coupling. */
 static void fast_tick_general(drive_segment *d) {
     if (d->cfg.inverter == DRIVE_INVERTER_AVERAGED) {
@@ -137,6 +163,7 @@ static void fast_tick_general(drive_segment *d) {
             /* The real-time modulator's held states as duties: the general
              * stage gives the fused step's results bit for bit. */
             pwm_rt_step(&d->rt, d->s);
+            faulted_states(d);
             for (int x = 0; x < 3; x++) {
                 d->in.duty[x] = d->s[x] * PWM_DUTY_ONE_Q;
             }
@@ -175,8 +202,24 @@ void drive_fast_tick(drive_segment *d) {
     }
 }
 
+/* Applies requested faults at a slow boundary (fast context). */
+static void faults_apply(drive_segment *d) {
+    d->fault = d->fault_next;
+    d->stage->k.neg_k_c = d->neg_k_c_next;
+    d->i_offset = d->i_offset_next;
+    if (d->fault.leg_short != 0u && d->trip == (uint8_t)DRIVE_TRIP_NONE) {
+        d->trip = (uint8_t)DRIVE_TRIP_LEG_SHORT;
+    }
+    d->plain = d->plain_ok && d->fault.switch_open == 0u && d->trip == (uint8_t)DRIVE_TRIP_NONE;
+    d->fault_new = false;
+}
+
 void drive_medium_latch(drive_segment *d) {
     const drive_latch *o = &d->out;
+    if (d->uv_req && d->trip == (uint8_t)DRIVE_TRIP_NONE) {
+        d->trip = (uint8_t)DRIVE_TRIP_UNDERVOLTAGE;
+        d->plain = false;
+    }
     pwm_rt_apply(&d->rt, &o->ramp);
     d->i_fast[0] += o->corr[0];
     d->i_fast[1] += o->corr[1];
@@ -202,6 +245,9 @@ void drive_medium_publish(drive_segment *d, bool slow_boundary) {
             d->in.battery = d->battery_next;
             d->bat_in_force = d->bat_next;
             d->battery_new = false;
+        }
+        if (d->fault_new) {
+            faults_apply(d);
         }
     }
     drive_frame_sums *m = &d->medium_in;
@@ -316,10 +362,14 @@ void drive_medium_task(drive_segment *d, bool control_due, bool slow_boundary) {
         }
         d->ctl_in.speed_cmd = d->speed_cmd;
         d->ctl_in.w = d->mout.w;
-        d->ctl_in.i_a = i_end[0];
+        d->ctl_in.i_a = fp_sat_q31((int64_t)i_end[0] + d->i_offset);
         d->ctl_in.i_b = i_end[1];
         d->ctl_in.i_c = d->mout.i_c;
         d->ctl_in.vdc = mean_q31(s->v_dc, 3u, n, &sat);
+    }
+    /* Under-voltage protection on the frame's mean DC-link voltage. */
+    if (s->v_dc < (int64_t)d->uv_q28 * (int64_t)n) {
+        d->uv_req = true;
     }
     /* The next frame's references: exact at both ends, the chord between. */
     if (d->cfg.inverter == DRIVE_INVERTER_SWITCHING) {
@@ -333,6 +383,7 @@ void drive_medium_task(drive_segment *d, bool control_due, bool slow_boundary) {
         w->w_end = d->mout.w;
         w->v_dc_end = d->stage->v_dc;
         w->cmd = d->cmd;
+        w->trip = d->trip;
         w->saturations = s->sat + d->pwm.sat_count + d->avg.mod.sat_count + d->motor.sat_count +
                          d->ctl_sat_taken + d->ps_clamps;
         d->slow_out = *w;
@@ -371,6 +422,21 @@ void drive_slow_measure(const drive_segment *d, drive_slow_meas *meas) {
     meas->e_mech_j = (double)w->p_mech / Q31_ONE * DRIVE_BASE_TORQUE_NM *
                      DRIVE_BASE_SPEED_RADPS * medium_s;
     meas->saturations = w->saturations;
+    meas->trip = (drive_trip)w->trip;
+}
+
+void drive_fault_request(drive_segment *d, const drive_faults *f) {
+    power_stage_q scratch;
+    d->fault_next = *f;
+    d->ps_params.c_dc_f = power_stage_params_default.c_dc_f * f->dc_cap_frac;
+    /* The stage's set-up forms the DC-link coefficient for the new capacitance. */
+    if (power_stage_init_q(&scratch, &d->ps_params, d->stage->step_ns, 600.0) == PS_OK) {
+        d->neg_k_c_next = scratch.k.neg_k_c;
+    } else {
+        d->neg_k_c_next = d->stage->k.neg_k_c;
+    }
+    d->i_offset_next = fp_from_f64_q31(f->current_offset_a / DRIVE_BASE_CURRENT_A);
+    d->fault_new = true;
 }
 
 void drive_battery_next(drive_segment *d, const drive_battery *next) {

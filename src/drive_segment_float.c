@@ -22,11 +22,13 @@ drive_status drive_init(drive_segment *d, const drive_config *cfg, const propell
     }
     *d = (drive_segment){0};
     d->cfg = *cfg;
+    d->ps_params = power_stage_params_default;
+    d->fault.dc_cap_frac = 1.0;
     double fast_s = 1e-9 * (double)cfg->fast_ns;
     double medium_s = fast_s * (double)cfg->fast_per_medium;
     uint32_t mod_ns = cfg->fast_ns;
     if (cfg->inverter == DRIVE_INVERTER_AVERAGED) {
-        if (inverter_avg_init_f32(&d->avg, &pwm_located, &power_stage_params_default,
+        if (inverter_avg_init_f32(&d->avg, &pwm_located, &d->ps_params,
                                   cfg->fast_ns, cfg->averaged_substeps,
                                   cfg->v_dc0_v) != INVERTER_AVG_OK) {
             return DRIVE_ERR_MODEL;
@@ -37,7 +39,7 @@ drive_status drive_init(drive_segment *d, const drive_config *cfg, const propell
     } else {
         if (pwm_init_f32(&d->pwm, &pwm_located, cfg->fast_ns) != PWM_OK ||
             pwm_rt_init(&d->rt, &pwm_sampled, cfg->fast_ns) != PWM_OK ||
-            power_stage_init_f32(&d->ps, &power_stage_params_default, cfg->fast_ns,
+            power_stage_init_f32(&d->ps, &d->ps_params, cfg->fast_ns,
                                  cfg->v_dc0_v) != PS_OK) {
             return DRIVE_ERR_MODEL;
         }
@@ -62,9 +64,11 @@ drive_status drive_init(drive_segment *d, const drive_config *cfg, const propell
     }
     d->filt_k = 1.0f / (float)cfg->fast_per_medium;
     d->k_deriv = (float)(6.283185307179586 * fast_s / 1.7320508075688772);
-    d->plain = (cfg->inverter == DRIVE_INVERTER_SWITCHING) &&
+    d->plain_ok = (cfg->inverter == DRIVE_INVERTER_SWITCHING) &&
                (cfg->down == COUPLE_ZOH || cfg->down == COUPLE_STAGGER) &&
                (cfg->up != COUPLE_FILTER);
+    d->plain = d->plain_ok;
+    d->neg_k_c_next = d->stage->k.neg_k_c;
     return DRIVE_OK;
 }
 
@@ -82,6 +86,20 @@ static inline void fast_tick_plain(drive_segment *d) {
     d->sums.v_dc += ps->v_dc;
 }
 
+/* The leg states the faults leave (as in drive_segment_fixed.c). */
+static void faulted_states(drive_segment *d) {
+    const float i_l[3] = {d->ps.ph[0].i_l, d->ps.ph[1].i_l, -d->ps.ph[0].i_l - d->ps.ph[1].i_l};
+    for (uint32_t x = 0u; x < 3u; x++) {
+        const int32_t diode = (i_l[x] < 0.0f) ? 1 : 0;
+        const bool upper_open = d->fault.switch_open == 2u * x + 1u;
+        const bool lower_open = d->fault.switch_open == 2u * x + 2u;
+        if (d->trip != (uint8_t)DRIVE_TRIP_NONE || (upper_open && d->s[x] == 1) ||
+            (lower_open && d->s[x] == 0)) {
+            d->s[x] = diode;
+        }
+    }
+}
+
 /* Every other configuration: the general modulators, a moving EMF, the filter coupling. */
 static void fast_tick_general(drive_segment *d) {
     if (d->cfg.inverter == DRIVE_INVERTER_AVERAGED) {
@@ -90,6 +108,7 @@ static void fast_tick_general(drive_segment *d) {
         if (d->cfg.inverter == DRIVE_INVERTER_SWITCHING) {
             /* The held states as duties: the fused step's results bit for bit. */
             pwm_rt_step(&d->rt, d->s);
+            faulted_states(d);
             for (int x = 0; x < 3; x++) {
                 d->in.duty[x] = (float)d->s[x];
             }
@@ -127,8 +146,23 @@ void drive_fast_tick(drive_segment *d) {
     }
 }
 
+static void faults_apply(drive_segment *d) {
+    d->fault = d->fault_next;
+    d->stage->k.neg_k_c = d->neg_k_c_next;
+    d->i_offset = d->i_offset_next;
+    if (d->fault.leg_short != 0u && d->trip == (uint8_t)DRIVE_TRIP_NONE) {
+        d->trip = (uint8_t)DRIVE_TRIP_LEG_SHORT;
+    }
+    d->plain = d->plain_ok && d->fault.switch_open == 0u && d->trip == (uint8_t)DRIVE_TRIP_NONE;
+    d->fault_new = false;
+}
+
 void drive_medium_latch(drive_segment *d) {
     const drive_latch *o = &d->out;
+    if (d->uv_req && d->trip == (uint8_t)DRIVE_TRIP_NONE) {
+        d->trip = (uint8_t)DRIVE_TRIP_UNDERVOLTAGE;
+        d->plain = false;
+    }
     pwm_rt_apply(&d->rt, &o->ramp);
     d->i_fast[0] += o->corr[0];
     d->i_fast[1] += o->corr[1];
@@ -153,6 +187,9 @@ void drive_medium_publish(drive_segment *d, bool slow_boundary) {
             d->in.battery = d->battery_next;
             d->bat_in_force = d->bat_next;
             d->battery_new = false;
+        }
+        if (d->fault_new) {
+            faults_apply(d);
         }
     }
     drive_frame_sums *m = &d->medium_in;
@@ -249,10 +286,13 @@ void drive_medium_task(drive_segment *d, bool control_due, bool slow_boundary) {
         }
         d->ctl_in.speed_cmd_radps = d->speed_cmd;
         d->ctl_in.w_radps = d->mout.w_radps;
-        d->ctl_in.i_a = i_end[0];
+        d->ctl_in.i_a = i_end[0] + d->i_offset;
         d->ctl_in.i_b = i_end[1];
         d->ctl_in.i_c = d->mout.i_c;
         d->ctl_in.vdc_v = s->v_dc * inv_n;
+    }
+    if (s->v_dc * inv_n < (float)DRIVE_UV_TRIP_V) {
+        d->uv_req = true;
     }
     if (d->cfg.inverter == DRIVE_INVERTER_SWITCHING) {
         pwm_rt_ramp_f32(&d->out.ramp, d->cmd.m, d->ref_ph, d->cmd.phase_inc, n);
@@ -264,6 +304,7 @@ void drive_medium_task(drive_segment *d, bool control_due, bool slow_boundary) {
         w->w_end = d->mout.w_radps;
         w->v_dc_end = d->stage->v_dc;
         w->cmd = d->cmd;
+        w->trip = d->trip;
         w->saturations = s->sat + d->pwm.sat_count + d->avg.mod.sat_count + d->ctl_sat_taken +
                          d->ps_clamps;
         d->slow_out = *w;
@@ -295,6 +336,20 @@ void drive_slow_measure(const drive_segment *d, drive_slow_meas *meas) {
     meas->f_hz = (double)w->cmd.freq_hz;
     meas->e_mech_j = w->p_mech * medium_s;
     meas->saturations = w->saturations;
+    meas->trip = (drive_trip)w->trip;
+}
+
+void drive_fault_request(drive_segment *d, const drive_faults *f) {
+    power_stage_f32 scratch;
+    d->fault_next = *f;
+    d->ps_params.c_dc_f = power_stage_params_default.c_dc_f * f->dc_cap_frac;
+    if (power_stage_init_f32(&scratch, &d->ps_params, d->stage->step_ns, 600.0) == PS_OK) {
+        d->neg_k_c_next = scratch.k.neg_k_c;
+    } else {
+        d->neg_k_c_next = d->stage->k.neg_k_c;
+    }
+    d->i_offset_next = (float)f->current_offset_a;
+    d->fault_new = true;
 }
 
 void drive_battery_next(drive_segment *d, const drive_battery *next) {

@@ -27,7 +27,47 @@ void exec_config_default(exec_config *cfg) {
 
 /* ---- Scenario player (background) ---------------------------------------- */
 
-static void apply_event(vessel_cmd *c, const scenario_event *ev) {
+/* The fin commands, in the order of the fin_jam values and the actual-angle states. */
+static double *fin_command(vessel_cmd *c, int k) {
+    double *fins[4] = {&c->rudder_rad, &c->stern_rad, &c->bow_port_rad, &c->bow_stbd_rad};
+    return fins[k];
+}
+
+/*
+ * A fault command (background): recorded in the mask the records carry;
+ * drive faults go to the drive, which applies them at the next slow
+ * boundary; a jammed fin holds its actual angle from now on.
+ */
+static void apply_fault(exec *e, const scenario_event *ev) {
+    e->fault_mask |= 1u << (ev->command - (uint16_t)SCN_FIRST_FAULT);
+    switch ((scenario_command)ev->command) {
+    case SCN_FAULT_SWITCH_OPEN: e->dfault.switch_open = (uint8_t)ev->value; break;
+    case SCN_FAULT_LEG_SHORT: e->dfault.leg_short = (uint8_t)ev->value; break;
+    case SCN_FAULT_DC_CAP: e->dfault.dc_cap_frac = ev->value; break;
+    case SCN_FAULT_CURRENT_OFFSET: e->dfault.current_offset_a = ev->value; break;
+    case SCN_FAULT_BATTERY_CUTOFF: e->battery_cut = true; break;
+    case SCN_FAULT_FIN_JAM: {
+        int k = (int)ev->value - 1;
+        e->fin_jammed[k] = true;
+        *fin_command(&e->cmd, k) = e->x[VESSEL_DELTA_R_RAD + k];
+        break;
+    }
+    default: break;
+    }
+    if (e->cfg.plant == EXEC_PLANT_FULL && e->drive_ready) {
+        drive_fault_request(&e->drive, &e->dfault);
+    }
+}
+
+static void apply_event(exec *e, const scenario_event *ev) {
+    vessel_cmd *c = &e->cmd;
+    if (ev->command >= (uint16_t)SCN_FIRST_FAULT) {
+        apply_fault(e, ev);
+        return;
+    }
+    if (ev->command <= (uint16_t)SCN_BOW_STBD && e->fin_jammed[ev->command]) {
+        return; /* a jammed fin ignores its commands */
+    }
     switch ((scenario_command)ev->command) {
     case SCN_RUDDER: c->rudder_rad = ev->value; break;
     case SCN_STERN: c->stern_rad = ev->value; break;
@@ -35,7 +75,7 @@ static void apply_event(vessel_cmd *c, const scenario_event *ev) {
     case SCN_BOW_STBD: c->bow_stbd_rad = ev->value; break;
     case SCN_N_RPM: c->n_rpm = ev->value; break;
     case SCN_BUOYANCY: c->delta_b_n = ev->value; break;
-    case SCN_COMMAND_COUNT: break;
+    default: break;
     }
 }
 
@@ -44,7 +84,7 @@ static void zigzag_rule(exec *e, double t) {
     const scenario_zigzag *z = &e->scn->zigzag;
     bool active = z->enabled && t >= z->start_s - 1e-9 && (z->stop_s < 0.0 || t < z->stop_s);
     if (!active) {
-        if (e->zz_rudder != 0.0) {
+        if (e->zz_rudder != 0.0 && !e->fin_jammed[0]) {
             e->cmd.rudder_rad = 0.0; /* the zig-zag ended: rudder amidships */
             e->zz_rudder = 0.0;
         }
@@ -59,14 +99,16 @@ static void zigzag_rule(exec *e, double t) {
     } else if (e->zz_rudder < 0.0 && psi - e->zz_psi0 >= z->heading_rad) {
         e->zz_rudder = z->rudder_rad;
     }
-    e->cmd.rudder_rad = e->zz_rudder;
+    if (!e->fin_jammed[0]) {
+        e->cmd.rudder_rad = e->zz_rudder;
+    }
 }
 
 /* Applies the commands due at the slow boundary t: events at or before t. */
 static void apply_commands(exec *e, double t) {
     double due = t + 1e-9 * e->slow_s;
     while (e->next_event < e->scn->n_events && e->scn->events[e->next_event].t_s <= due) {
-        apply_event(&e->cmd, &e->scn->events[e->next_event]);
+        apply_event(e, &e->scn->events[e->next_event]);
         e->next_event++;
     }
     zigzag_rule(e, t);
@@ -152,6 +194,10 @@ static exec_status init_drive(exec *e) {
         return EXEC_ERR_MODEL;
     }
     drive_start(&e->drive, &b0);
+    e->drive_ready = true;
+    if (e->fault_mask != 0u) {
+        drive_fault_request(&e->drive, &e->dfault);
+    }
     e->bat_next = b0;
     (void)speed_command_at(e, 0.0);
     e->speed_report_rpm = e->speed_rpm;
@@ -164,6 +210,8 @@ static void make_report(exec *e);
 exec_status exec_init(exec *e, const exec_config *cfg, const scenario *scn) {
     *e = (exec){0};
     e->cfg = *cfg;
+    e->dfault.dc_cap_frac = 1.0;
+    e->trip_t_s = -1.0;
     e->scn = scn;
     double duration = (cfg->duration_s > 0.0) ? cfg->duration_s : scn->duration_s;
     if (!(cfg->soc0 > 0.0 && cfg->soc0 <= 1.0) || cfg->plant > EXEC_PLANT_FULL) {
@@ -334,9 +382,13 @@ static void battery_frame(exec *e) {
     e->acc_f += m->f_hz;
     e->acc_n++;
     battery_companion bc = battery_companion_f64(&e->bat);
-    e->bat_next.g_s = bc.g_s;
-    e->bat_next.b_a = bc.b_a;
+    /* The contactor open (battery_cutoff): no current either way. */
+    e->bat_next.g_s = e->battery_cut ? 0.0 : bc.g_s;
+    e->bat_next.b_a = e->battery_cut ? 0.0 : bc.b_a;
     drive_battery_next(&e->drive, &e->bat_next);
+    if (m->trip != DRIVE_TRIP_NONE && e->trip_t_s < 0.0) {
+        e->trip_t_s = (double)e->frame * e->slow_s;
+    }
 }
 
 static void make_report(exec *e) {
@@ -366,7 +418,9 @@ static void make_report(exec *e) {
         r->soc = e->bat.soc;
         r->m_index = e->acc_m / n;
         r->f_hz = e->acc_f / n;
+        r->trip = (uint32_t)e->meas.trip;
     }
+    r->faults = e->fault_mask;
     e->acc_te = e->acc_i_sq = e->acc_v_dc = e->acc_i_batt = e->acc_m = e->acc_f = 0.0;
     e->acc_n = 0u;
     e->report_ready = true;

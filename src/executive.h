@@ -78,6 +78,8 @@ typedef struct {
     double soc;                /* [-] state of charge */
     double m_index;            /* [-] modulation index */
     double f_hz;               /* [Hz] stator frequency */
+    uint32_t faults;           /* active fault commands: bit k for command SCN_FIRST_FAULT + k */
+    uint32_t trip;             /* drive_trip: the drive's protection */
 } exec_frame;
 
 typedef enum {
@@ -120,6 +122,13 @@ typedef struct {
     battery bat;
     uint32_t frame;           /* slow frames done */
     size_t next_event;
+    /* Faults injected by the scenario (exec_frame.faults, drive_faults). */
+    uint32_t fault_mask;
+    bool fin_jammed[4];
+    bool battery_cut;         /* the pack's contactor is open */
+    drive_faults dfault;
+    bool drive_ready;         /* the drive is initialised (faults may be requested) */
+    double trip_t_s;          /* [s] when the protection tripped (< 0: it has not) */
     double zz_rudder, zz_psi0;
     manoeuvre man;
     /* Drive (full plant). */

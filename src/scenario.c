@@ -16,7 +16,14 @@
 
 const char *const scenario_command_names[SCN_COMMAND_COUNT] = {
     "rudder", "stern", "bow_port", "bow_stbd", "n_rpm", "buoyancy",
+    "switch_open", "leg_short", "dc_cap", "battery_cutoff", "fin_jam", "current_offset",
 };
+
+/* Symbolic values of the fault commands that name a part: the k-th is k + 1. */
+static const char *const switch_symbols[] = {"a+", "a-", "b+", "b-", "c+", "c-", NULL};
+static const char *const leg_symbols[] = {"a", "b", "c", NULL};
+static const char *const on_symbols[] = {"on", NULL};
+static const char *const fin_symbols[] = {"rudder", "stern", "bow_port", "bow_stbd", NULL};
 
 /* What a value may be: its unit, whether "deg" may follow, and its range. */
 typedef struct {
@@ -24,35 +31,42 @@ typedef struct {
     bool angle; /* [rad], and a "deg" suffix converts */
     double min;
     double max;
+    const char *const *symbols; /* when not NULL: one of these names, read as 1, 2, ... */
 } value_rule;
 
 static const value_rule command_rules[SCN_COMMAND_COUNT] = {
-    {"rad", true, -45.0 * DEG_TO_RAD, 45.0 * DEG_TO_RAD},
-    {"rad", true, -45.0 * DEG_TO_RAD, 45.0 * DEG_TO_RAD},
-    {"rad", true, -45.0 * DEG_TO_RAD, 45.0 * DEG_TO_RAD},
-    {"rad", true, -45.0 * DEG_TO_RAD, 45.0 * DEG_TO_RAD},
-    {"rpm", false, -1500.0, 1500.0},
-    {"N", false, -5340.0, 5340.0},
+    {"rad", true, -45.0 * DEG_TO_RAD, 45.0 * DEG_TO_RAD, NULL},
+    {"rad", true, -45.0 * DEG_TO_RAD, 45.0 * DEG_TO_RAD, NULL},
+    {"rad", true, -45.0 * DEG_TO_RAD, 45.0 * DEG_TO_RAD, NULL},
+    {"rad", true, -45.0 * DEG_TO_RAD, 45.0 * DEG_TO_RAD, NULL},
+    {"rpm", false, -1500.0, 1500.0, NULL},
+    {"N", false, -5340.0, 5340.0, NULL},
+    {"", false, 1.0, 6.0, switch_symbols},
+    {"", false, 1.0, 3.0, leg_symbols},
+    {"", false, 0.05, 1.0, NULL},
+    {"", false, 1.0, 1.0, on_symbols},
+    {"", false, 1.0, 4.0, fin_symbols},
+    {"A", false, -50.0, 50.0, NULL},
 };
 
 /* Ranges of the initial states, in the order of vessel_state_names. */
 static const value_rule state_rules[VESSEL_NSTATES] = {
-    {"m/s", false, -20.0, 20.0},     {"m/s", false, -20.0, 20.0},
-    {"m/s", false, -20.0, 20.0},     {"rad/s", false, -10.0, 10.0},
-    {"rad/s", false, -10.0, 10.0},   {"rad/s", false, -10.0, 10.0},
-    {"m", false, -1e7, 1e7},         {"m", false, -1e7, 1e7},
-    {"m", false, -1e4, 1e4},         {"rad", true, -3.1415926535897931, 3.1415926535897931},
-    {"rad", true, -80.0 * DEG_TO_RAD, 80.0 * DEG_TO_RAD},
-    {"rad", true, -1e3, 1e3},
-    {"rad", true, -45.0 * DEG_TO_RAD, 45.0 * DEG_TO_RAD},
-    {"rad", true, -45.0 * DEG_TO_RAD, 45.0 * DEG_TO_RAD},
-    {"rad", true, -45.0 * DEG_TO_RAD, 45.0 * DEG_TO_RAD},
-    {"rad", true, -45.0 * DEG_TO_RAD, 45.0 * DEG_TO_RAD},
-    {"rpm", false, -1500.0, 1500.0},
+    {"m/s", false, -20.0, 20.0, NULL},     {"m/s", false, -20.0, 20.0, NULL},
+    {"m/s", false, -20.0, 20.0, NULL},     {"rad/s", false, -10.0, 10.0, NULL},
+    {"rad/s", false, -10.0, 10.0, NULL},   {"rad/s", false, -10.0, 10.0, NULL},
+    {"m", false, -1e7, 1e7, NULL},         {"m", false, -1e7, 1e7, NULL},
+    {"m", false, -1e4, 1e4, NULL},         {"rad", true, -3.1415926535897931, 3.1415926535897931, NULL},
+    {"rad", true, -80.0 * DEG_TO_RAD, 80.0 * DEG_TO_RAD, NULL},
+    {"rad", true, -1e3, 1e3, NULL},
+    {"rad", true, -45.0 * DEG_TO_RAD, 45.0 * DEG_TO_RAD, NULL},
+    {"rad", true, -45.0 * DEG_TO_RAD, 45.0 * DEG_TO_RAD, NULL},
+    {"rad", true, -45.0 * DEG_TO_RAD, 45.0 * DEG_TO_RAD, NULL},
+    {"rad", true, -45.0 * DEG_TO_RAD, 45.0 * DEG_TO_RAD, NULL},
+    {"rpm", false, -1500.0, 1500.0, NULL},
 };
 
-static const value_rule time_rule = {"s", false, 0.0, MAX_TIME_S};
-static const value_rule angle_rule = {"rad", true, 1e-6, 45.0 * DEG_TO_RAD};
+static const value_rule time_rule = {"s", false, 0.0, MAX_TIME_S, NULL};
+static const value_rule angle_rule = {"rad", true, 1e-6, 45.0 * DEG_TO_RAD, NULL};
 
 typedef struct {
     scenario *s;
@@ -83,8 +97,28 @@ static bool fail(parser *p, const parse_token *field, const char *format, ...) {
 }
 
 /* Reads a value by its rule; `field` names it in messages. */
+static bool read_symbol(parser *p, const parse_token *field, const char *text, size_t n,
+                        const value_rule *rule, double *out) {
+    for (size_t k = 0; rule->symbols[k] != NULL; k++) {
+        if (parse_word_is(text, n, rule->symbols[k])) {
+            *out = (double)(k + 1u);
+            return true;
+        }
+    }
+    char list[64];
+    size_t len = 0;
+    for (size_t k = 0; rule->symbols[k] != NULL && len < sizeof list; k++) {
+        len += fmt_format(list + len, sizeof list - len, "%s%s", (k > 0u) ? ", " : "",
+                          rule->symbols[k]);
+    }
+    return fail(p, field, "expected one of %s, got '%.*s'", list, (int)n, text);
+}
+
 static bool read_value(parser *p, const parse_token *field, const char *text, size_t n,
                        const value_rule *rule, double *out) {
+    if (rule->symbols != NULL) {
+        return read_symbol(p, field, text, n, rule, out);
+    }
     double v = 0.0;
     size_t used = 0;
     if (!parse_number(text, n, &v, &used)) {
@@ -134,7 +168,7 @@ static bool parse_duration(parser *p, const parse_token *tok, size_t n) {
     if (n != 2u) {
         return fail(p, &tok[0], "expected 'duration <seconds>'");
     }
-    static const value_rule rule = {"s", false, 1e-3, MAX_TIME_S};
+    static const value_rule rule = {"s", false, 1e-3, MAX_TIME_S, NULL};
     return read_value(p, &tok[0], tok[1].text, tok[1].len, &rule, &p->s->duration_s);
 }
 
@@ -199,7 +233,7 @@ static bool parse_at(parser *p, const parse_token *tok, size_t n) {
         int c = find_name(&name, scenario_command_names, SCN_COMMAND_COUNT);
         if (c < 0) {
             return fail(p, &name, "unknown command (expected rudder, stern, bow_port, "
-                                  "bow_stbd, n_rpm or buoyancy)");
+                                  "bow_stbd, n_rpm, buoyancy or a fault)");
         }
         double v = 0.0;
         if (!read_value(p, &name, value.text, value.len, &command_rules[c], &v) ||

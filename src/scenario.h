@@ -7,7 +7,14 @@
  *   duration <s>
  *   init <state>=<value> ...       any of the 17 vessel states; unnamed ones start at 0
  *   at <t> <command>=<value> ...   rudder stern bow_port bow_stbd [rad, or NNdeg],
- *                                  n_rpm [rpm], buoyancy [N, the adjustment dB]
+ *                                  n_rpm [rpm], buoyancy [N, the adjustment dB],
+ *                                  and the faults (docs/reliability.md):
+ *                                  switch_open=a+|a-|b+|b-|c+|c-   a switch stuck open
+ *                                  leg_short=a|b|c                 shoot-through: trips
+ *                                  dc_cap=<fraction>               DC-link capacitance left
+ *                                  battery_cutoff=on               the pack at cut-off
+ *                                  fin_jam=rudder|stern|bow_port|bow_stbd
+ *                                  current_offset=<A>              phase-a sensor offset
  *   zigzag rudder=<amp> heading=<threshold> [start=<s>] [stop=<s>]
  *
  * A command holds until changed. Events apply at the first slow-frame
@@ -42,6 +49,12 @@ typedef enum {
     SCN_BOW_STBD,    /* [rad] */
     SCN_N_RPM,       /* [rpm] shaft speed command */
     SCN_BUOYANCY,    /* [N] buoyancy adjustment dB = B - W */
+    SCN_FAULT_SWITCH_OPEN,    /* switch 1..6: a+ a- b+ b- c+ c- (upper, lower) */
+    SCN_FAULT_LEG_SHORT,      /* leg 1..3 */
+    SCN_FAULT_DC_CAP,         /* [-] fraction of the DC-link capacitance left */
+    SCN_FAULT_BATTERY_CUTOFF, /* 1: the pack's protection opens its contactor */
+    SCN_FAULT_FIN_JAM,        /* fin 1..4: rudder, stern, bow_port, bow_stbd */
+    SCN_FAULT_CURRENT_OFFSET, /* [A] offset of the phase-a current sensor */
     SCN_COMMAND_COUNT
 } scenario_command;
 
@@ -73,6 +86,9 @@ typedef struct {
     char field[24];      /* the field or keyword at fault */
     char message[120];   /* what was expected, and what was found */
 } scenario_error;
+
+/* The first fault command; commands from here on are faults. */
+#define SCN_FIRST_FAULT SCN_FAULT_SWITCH_OPEN
 
 /* Name and unit of each command, as the file and reports write them. */
 extern const char *const scenario_command_names[SCN_COMMAND_COUNT];

@@ -180,6 +180,8 @@ size_t tlm_encode_record(uint8_t *buf, uint16_t seq, const exec_frame *f) {
     for (size_t i = 0; i < RECORD_DOUBLES; i++) {
         put_f64(&w, v[i]);
     }
+    put_u32(&w, f->faults);
+    put_u32(&w, f->trip);
     return frame_end(buf, &w);
 }
 
@@ -268,6 +270,8 @@ void tlm_decode_record(const tlm_frame *f, exec_frame *rec) {
         v[i] = get_f64(&r);
     }
     record_from_array(v, rec);
+    rec->faults = get_u32(&r);
+    rec->trip = get_u32(&r);
 }
 
 void tlm_decode_end(const tlm_frame *f, tlm_end *e) {

@@ -37,7 +37,7 @@
 #define TLM_MACHINE_CHARS 24u /* machine name field, NUL-padded */
 
 #define TLM_START_PAYLOAD (4u + 5u * 4u + 8u + TLM_MACHINE_CHARS)
-#define TLM_RECORD_PAYLOAD (4u + 30u * 8u)
+#define TLM_RECORD_PAYLOAD (4u + 30u * 8u + 2u * 4u)
 #define TLM_END_PAYLOAD (4u + 4u * 8u + 5u * 4u + 2u * 8u + 4u)
 #define TLM_FRAME_MAX (TLM_HEADER_BYTES + TLM_RECORD_PAYLOAD + TLM_CRC_BYTES)
 

@@ -64,6 +64,9 @@ for v in linux-fixed linux-float; do
     run "host $v uuvsim end-to-end" pass sh tests/host/test_uuvsim_cli.sh "$BUILD/$v/uuvsim" \
         "$BUILD/tools/csvdiff"
 done
+for v in linux-fixed linux-float; do
+    run "host $v fault injection" pass sh tests/host/test_faults.sh "$BUILD/$v/uuvsim"
+done
 run "host math vs libm" pass "$BUILD/tools/test_math_libm"
 run "host check_tables (exhaustive)" pass "$BUILD/tools/check_tables"
 run "host wavetable_data.c = generator" pass "$BUILD/tools/gen_wavetables" --check \

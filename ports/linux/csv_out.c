@@ -45,8 +45,8 @@ void out_abort(out_file *o) {
     }
 }
 
-static const char *const drive_columns[] = {"te_nm", "i_rms_a", "v_dc", "i_batt_a",
-                                            "soc", "m_index", "f_hz"};
+static const char *const drive_columns[] = {"te_nm", "i_rms_a", "v_dc", "i_batt_a", "soc",
+                                            "m_index", "f_hz", "faults", "trip"};
 
 void csv_header(FILE *f, bool full_plant) {
     fputs("t_s", f);
@@ -73,8 +73,9 @@ void csv_row(FILE *f, const exec_frame *r, bool full_plant) {
         fprintf(f, ",%.17g", r->cmd[i]);
     }
     if (full_plant) {
-        fprintf(f, ",%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g", r->te_nm, r->i_rms_a,
-                r->v_dc_v, r->i_batt_a, r->soc, r->m_index, r->f_hz);
+        fprintf(f, ",%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%.17g,%u,%u", r->te_nm, r->i_rms_a,
+                r->v_dc_v, r->i_batt_a, r->soc, r->m_index, r->f_hz, (unsigned)r->faults,
+                (unsigned)r->trip);
     }
     fputc('\n', f);
 }

@@ -70,6 +70,7 @@ static const char *const law_names[] = {"mss", "paper"};
 static const char *const inverter_names[] = {"switching", "averaged", "event"};
 static const char *const down_names[] = {"zoh", "foh", "deriv", "stagger"};
 static const char *const up_names[] = {"avg", "filter", "sample"};
+static const char *const trip_names[] = {"none", "leg short", "under-voltage"};
 
 static void print_json(FILE *f_out, const run_result *r) {
     const exec *e = r->e;
@@ -92,6 +93,19 @@ static void print_json(FILE *f_out, const run_result *r) {
            exec_overruns(e), e->count.saturations);
     fprintf(f_out, "  \"energy_wh\": %.9g,\n  \"mechanical_energy_wh\": %.9g,\n",
            e->count.e_batt_j / 3600.0, e->count.e_mech_j / 3600.0);
+    fprintf(f_out, "  \"faults\": [");
+    for (int k = 0; k < SCN_COMMAND_COUNT - SCN_FIRST_FAULT; k++) {
+        if ((e->fault_mask & (1u << k)) != 0u) {
+            fprintf(f_out, "%s\"%s\"", (e->fault_mask & ((1u << k) - 1u)) != 0u ? ", " : "",
+                    scenario_command_names[SCN_FIRST_FAULT + k]);
+        }
+    }
+    fprintf(f_out, "],\n  \"protection\": {\"tripped\": %s, \"reason\": \"%s\"",
+            f->trip != 0u ? "true" : "false", trip_names[f->trip < 3u ? f->trip : 0u]);
+    if (e->trip_t_s >= 0.0) {
+        fprintf(f_out, ", \"at_s\": %.6g", e->trip_t_s);
+    }
+    fprintf(f_out, "},\n");
     if (r->o->realtime) {
         fprintf(f_out, "  \"realtime_lag_max_s\": %.6g,\n  \"realtime_late_frames\": %u,\n",
                r->realtime_lag_max_s, r->realtime_late);
@@ -140,6 +154,10 @@ static void print_text(const run_result *r) {
                exec_overruns(e), e->count.saturations);
         printf("battery: %.1f Wh drawn, state of charge %.4f, DC link %.1f V\n",
                e->count.e_batt_j / 3600.0, e->bat.soc, f->v_dc_v);
+        if (e->fault_mask != 0u || f->trip != 0u) {
+            printf("faults injected: 0x%x; protection: %s\n", (unsigned)e->fault_mask,
+                   f->trip != 0u ? trip_names[f->trip < 3u ? f->trip : 0u] : "not tripped");
+        }
     }
     printf("final: u %.3f m/s, N %.1f m, E %.1f m, depth %.2f m, heading %.1f deg, "
            "shaft %.0f rpm\n",
