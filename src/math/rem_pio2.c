@@ -134,7 +134,7 @@ static unsigned reduce_wide(uint64_t m, int e, uint32_t r[4], int *neg) {
 
 /* Index of the highest set bit of r[0..3], or -1 when r is zero. */
 static int top_bit(const uint32_t r[4]) {
-    for (int k = 3; k >= 0; k--) {
+    for (int k = 3; k >= 0; k--) { /* LCOV_EXCL_BR_LINE: r is never 0 (see the callers) */
         if (r[k] != 0u) {
             int b = 31;
             while ((r[k] >> b) == 0u) {
@@ -156,7 +156,7 @@ static unsigned rem_pio2_wide_f64(double ax, double *hi, double *lo) {
     int t = top_bit(r);
     double h = 0.0;
     double l = 0.0;
-    if (t >= 0) {
+    if (t >= 0) { /* LCOV_EXCL_BR_LINE: r >= 2^66: no double is within 2^-61 of k pi/2 */
         /* The 53 bits from the top and the 53 after them, converted exactly. */
         uint64_t bh =
             ((uint64_t)(limbs_get32(r, 4, t - 20) & 0x1fffffu) << 32) | limbs_get32(r, 4, t - 52);
@@ -215,7 +215,7 @@ static unsigned rem_pio2_wide_f32(float ax, float *hi, float *lo) {
     int t = top_bit(r);
     float h = 0.0f;
     float l = 0.0f;
-    if (t >= 0) {
+    if (t >= 0) { /* LCOV_EXCL_BR_LINE: r >= 2^66: no double is within 2^-61 of k pi/2 */
         /* 24 + 24 bits, each converted exactly and scaled into place. */
         float bh = (float)(limbs_get32(r, 4, t - 23) & 0xffffffu) * 0x1p-23f;
         float bl = (float)(limbs_get32(r, 4, t - 47) & 0xffffffu) * 0x1p-23f;

@@ -16,9 +16,9 @@ double math_scale_f64(double x, int k) {
         k += 1000;
     }
     /* Only reached outside the documented range; keeps the bit pattern valid. */
-    if (k > 1023) {
+    if (k > 1023) { /* LCOV_EXCL_BR_LINE: the only caller (exp) passes k <= 1024 */
         k = 1023;
-    } else if (k < -1022) {
+    } else if (k < -1022) { /* LCOV_EXCL_BR_LINE: exp passes k >= -1075 */
         k = -1022;
     }
     return x * math_pow2i_f64(k);
@@ -32,9 +32,10 @@ float math_scale_f32(float x, int k) {
         x *= 0x1p-100f;
         k += 100;
     }
-    if (k > 127) {
+    /* As above; the callers (exp_f32, rem_pio2) pass -151 <= k <= 128. */
+    if (k > 127) { /* LCOV_EXCL_BR_LINE: k <= 128 - 100 after the first step */
         k = 127;
-    } else if (k < -126) {
+    } else if (k < -126) { /* LCOV_EXCL_BR_LINE: k >= -151 + 100 after the first step */
         k = -126;
     }
     return x * math_pow2i_f32(k);

@@ -505,6 +505,81 @@ static void test_params(void) {
     UT_CHECK(b.bad_input_frames == 1u && b.soc == 0.5);
 }
 
+static bool same_text(const char *a, const char *b) {
+    size_t k = 0u;
+    while (a[k] != '\0' && a[k] == b[k]) {
+        k++;
+    }
+    return a[k] == b[k];
+}
+
+static void test_edges(void) {
+    static battery_params q;
+    volatile double zero = 0.0;
+    const double nan = zero / zero;
+    const double inf = 1.0 / zero;
+    battery b;
+
+    UT_TEST("parameters: more than 1000 cells in parallel and a charge limit that is not "
+            "finite are refused; reset needs an initialised battery and an SOC in [0, 1]");
+    REJECT(q.n_parallel = 1001u, BATTERY_ERR_PACK);
+    REJECT(q.v_max_cell_v = inf, BATTERY_ERR_LIMITS);
+    UT_EQ_INT(battery_reset(NULL, 0.5), BATTERY_ERR_NULL);
+    b = (battery){0};
+    UT_EQ_INT(battery_reset(&b, 0.5), BATTERY_ERR_NULL);
+    UT_EQ_INT(battery_init(&b, &battery_params_uuv, 0.5), BATTERY_OK);
+    UT_EQ_INT(battery_reset(&b, -0.1), BATTERY_ERR_SOC);
+
+    UT_TEST("measurement: a mean square or power that is not finite counts as bad input and "
+            "moves no charge; a mean square below the squared mean is raised to it, so the "
+            "R0 heat is (ns / np) R0 i^2 h");
+    UT_EQ_INT(battery_init(&b, &battery_params_uuv, 0.5), BATTERY_OK);
+    battery_step_f64(&b, &(battery_frame_meas){-10.0, nan, -4800.0});
+    battery_step_f64(&b, &(battery_frame_meas){-10.0, 100.0, inf});
+    UT_CHECK(b.bad_input_frames == 2u && b.soc == 0.5 && b.q_out_c == 0.0);
+    UT_EQ_INT(battery_init(&b, &battery_params_uuv, 0.5), BATTERY_OK);
+    const double r0 = b.r0_cell_ohm;
+    battery_step_f64(&b, &(battery_frame_meas){-20.0, 0.0, -9600.0});
+    UT_NEAR(b.e_loss_r0_j, 144.0 / 2.0 * r0 * 400.0 * H_FRAME, 1e-12);
+
+    UT_TEST("overvoltage: 20 A into a full pack ends the frame above the 4.2 V charge limit "
+            "(4.1928 V + 8.5 mOhm x 10 A per cell) and is counted, without a cut-off");
+    UT_EQ_INT(battery_init(&b, &battery_params_uuv, 1.0), BATTERY_OK);
+    step_with_current(&b, 20.0);
+    UT_EQ_INT(b.overvoltage_frames, 1);
+    UT_CHECK(b.v_cell_end_v > 4.2 && b.v_cell_end_v < 4.1928 + 0.085 + 0.01);
+    UT_CHECK(!b.cut_off);
+
+    UT_TEST("power beyond the largest e^2 / (4 r) gives the current of that largest power, "
+            "-e / (2 r); a power that is not a number gives 0 A; a battery that is cut off "
+            "drives no voltage (0 V)");
+    UT_EQ_INT(battery_init(&b, &battery_params_uuv, 0.5), BATTERY_OK);
+    const double e = b.e_eff_v;
+    const double r = b.r_eff_ohm;
+    const double i_max = battery_current_for_power_f64(&b, 1e9);
+    UT_NEAR(i_max, -e / (2.0 * r), 1e-12 * e / r);
+    UT_NEAR(-battery_voltage_f64(&b, i_max) * i_max, e * e / (4.0 * r), 1e-9 * e * e / r);
+    UT_CHECK(battery_current_for_power_f64(&b, nan) == 0.0);
+    UT_EQ_INT(battery_init(&b, &battery_params_uuv, 0.0), BATTERY_OK);
+    UT_CHECK(b.cut_off && battery_voltage_f64(&b, -10.0) == 0.0);
+
+    UT_TEST("status texts: every status has its own non-empty text, and so has an unknown "
+            "value");
+    const char *texts[9];
+    for (int k = 0; k < 8; k++) {
+        texts[k] = battery_status_text((battery_status)k);
+    }
+    texts[8] = battery_status_text((battery_status)99);
+    bool ok = true;
+    for (int k = 0; k < 9; k++) {
+        ok = ok && texts[k] != NULL && texts[k][0] != '\0';
+        for (int j = 0; j < k; j++) {
+            ok = ok && !same_text(texts[j], texts[k]);
+        }
+    }
+    UT_CHECK(ok);
+}
+
 static void test_pack_window(void) {
     UT_TEST("pack (144s2p): the bus stays above the inverter's 410 V at 11 kW down to empty, "
             "and the energy gives more than 4 h of cruise at 3.5 kW");
@@ -541,5 +616,6 @@ void suite_battery(void) {
     test_cutoff_empty();
     test_cutoff_voltage();
     test_params();
+    test_edges();
     test_pack_window();
 }

@@ -652,6 +652,208 @@ static void test_params(void) {
     UT_CHECK(drive_control_init_q(&q, &big) == DRIVE_CONTROL_ERR_RANGE);
 }
 
+/*
+ * The checks of drive_control_design_f64 one by one (drive_control.h gives
+ * each field's range), and the constants that only the integer twin must
+ * refuse: a gain whose mantissa needs more than 30 bits or is not finite, a
+ * per-unit value of 1 or more, a ramp step below one LSB, Vdc_min below
+ * 2^16 LSB (drive_control_q.c).
+ */
+static void test_params_limits(void) {
+    UT_TEST("parameters: design rejects NULL, each field beyond its documented range, and "
+            "a PWM step that is not whole ns; NULL design output is allowed");
+    const drive_control_params *p = &drive_control_params_default;
+    drive_control_design d;
+    UT_CHECK(drive_control_design_f64(&d, NULL) == DRIVE_CONTROL_ERR_NULL);
+    UT_CHECK(drive_control_design_f64(NULL, p) == DRIVE_CONTROL_OK);
+    for (unsigned k = 0u; k < 9u; k++) {
+        drive_control_params b = *p;
+        switch (k) {
+        case 0u: b.ki_speed_hz_per_rad = math_inf_f64(); break;
+        case 1u: b.i_mag_a = -1.0; break;
+        case 2u: b.slip_max_hz = 100.0; break; /* not below freq_max (80 Hz) */
+        case 3u: b.vdc_min_v = 2000.0; break;  /* not below the 1024 V base */
+        case 4u: b.step_s = 0.02; break;
+        case 5u: b.pwm_step_s = 1e-3; break;   /* longer than the 800 us frame */
+        case 6u: b.pole_pairs = 17u; break;
+        case 7u: b.pwm_step_s = 2.0005e-6; break;
+        default: b.accel_max_radps2 = 0.0; break;
+        }
+        if (!UT_CHECK(drive_control_design_f64(&d, &b) == DRIVE_CONTROL_ERR_PARAM)) {
+            ut_info("case %u", k);
+        }
+    }
+
+    UT_TEST("parameters: the slip limit is sqrt(i_max^2 - i_mag^2) / k_q when that is below "
+            "slip_max (hand formula)");
+    drive_control_params wide = *p;
+    wide.slip_max_hz = 2.0;
+    UT_CHECK(drive_control_design_f64(&d, &wide) == DRIVE_CONTROL_OK);
+    double iq_max = math_sqrt_f64(p->i_max_a * p->i_max_a - p->i_mag_a * p->i_mag_a);
+    UT_NEAR(d.slip_lim_hz, iq_max / d.kq_a_per_hz, 1e-12);
+    UT_CHECK(d.slip_lim_hz < 2.0 && d.slip_lim_hz > 1.2);
+
+    UT_TEST("parameters: the integer twin refuses constants that do not fit its formats "
+            "(ERR_RANGE) which the float twin accepts");
+    drive_control_q q;
+    drive_control_f32 f;
+    for (unsigned k = 0u; k < 11u; k++) {
+        drive_control_params b = *p;
+        switch (k) {
+        case 0u: b.kp_speed_hz_per_radps = 1e308; break; /* 4e308 per unit: infinite */
+        case 1u: b.ki_speed_hz_per_rad = 1e12; break;    /* k_i T = 3.2e9 per unit */
+        case 2u: b.rr_ohm = 1e-12; break;                /* k_q of 2e12 per unit */
+        case 3u: b.rs_ohm = 1e10; break;
+        case 4u: b.lls_h = 1e9; break;                   /* 2 pi sigma Ls */
+        case 5u: b.lm_h = 1e10; b.rr_ohm = 1e12; break;  /* 2 pi Ls alone */
+        case 6u: b.kp_current_v_per_a = 1e10; break;
+        case 7u: b.ki_current_v_per_as = 1e13; break;
+        case 8u: b.accel_max_radps2 = 1e6; break;        /* ramp step of 800 rad/s */
+        case 9u: b.accel_max_radps2 = 1e-5; break;       /* ramp step below one LSB */
+        default: b.vdc_min_v = 0.01; break;              /* below 2^16 LSB of 1024 V */
+        }
+        bool ok = UT_CHECK(drive_control_init_q(&q, &b) == DRIVE_CONTROL_ERR_RANGE);
+        ok = UT_CHECK(drive_control_init_f32(&f, &b) == DRIVE_CONTROL_OK) && ok;
+        if (!ok) {
+            ut_info("case %u", k);
+        }
+    }
+
+    UT_TEST("parameters: a gain below 2^-32 keeps the largest shift, 62: ff_gain 1e-12 gives "
+            "mantissa round(1e-12 2^62) = 4611686");
+    drive_control_params tiny = *p;
+    tiny.ff_gain = 1e-12;
+    UT_CHECK(drive_control_init_q(&q, &tiny) == DRIVE_CONTROL_OK);
+    UT_EQ_INT(q.k_ff.shift, 62);
+    UT_EQ_INT(q.k_ff.mant, 4611686);
+}
+
+/* The speed integrator [Hz] of either twin. */
+static double ctl_x_w(const ctl_t *c) {
+    return c->fixed ? fp_pu_to_f64_q31(c->q.x_w, DRIVE_BASE_FREQ_HZ) : (double)c->f.x_w;
+}
+
+/*
+ * The limits of drive_control.h in both directions: the stator frequency at
+ * +-f_max (then the slip is what is left, clamped), the slip at +-f_sl_lim,
+ * and the voltage clipped at zero. At each, the integrator is held when the
+ * error pushes further into the limit (conditional integration).
+ */
+static void test_limits(bool fixed) {
+    UT_TEST(fixed ? "limits (fixed): f_max = 40 Hz at +-150 rad/s (47.7 Hz of rotor "
+                    "frequency): f_s = +-40 Hz, slip = -+f_sl_lim, speed integrator held"
+                  : "limits (float): f_max = 40 Hz at +-150 rad/s (47.7 Hz of rotor "
+                    "frequency): f_s = +-40 Hz, slip = -+f_sl_lim, speed integrator held");
+    drive_control_params p = drive_control_params_default;
+    p.freq_max_hz = 40.0;
+    drive_control_design d;
+    UT_CHECK(drive_control_design_f64(&d, &p) == DRIVE_CONTROL_OK);
+    ctl_t c;
+    ctl_out_t o;
+    for (int k = 0; k < 2; k++) {
+        double s = (k == 0) ? 1.0 : -1.0;
+        UT_CHECK(ctl_init(&c, &p, fixed));
+        ctl_in_t in = {s * 170.0, s * 150.0, 0.0, 0.0, 0.0, VDC_CUTOFF};
+        for (unsigned n = 0u; n < 5u; n++) {
+            ctl_step(&c, &in, &o);
+        }
+        UT_CHECK((o.flags & DRIVE_CONTROL_FLAG_FREQ_LIMIT) != 0u);
+        UT_NEAR(o.freq_hz, s * 40.0, 1e-6);
+        UT_NEAR(o.slip_hz, -s * d.slip_lim_hz, 1e-6);
+        UT_NEAR(ctl_x_w(&c), 0.0, 0.0);
+    }
+
+    UT_TEST(fixed ? "limits (fixed): at f_max with the error pulling away from the limit "
+                    "(command 100 rad/s, shaft 150 rad/s) the speed integrator integrates: "
+                    "x_w = k_i T sum(e) = -k_i T 0.16 (1 + ... + 5) rad/s after 5 frames"
+                  : "limits (float): at f_max with the error pulling away from the limit "
+                    "(command 100 rad/s, shaft 150 rad/s) the speed integrator integrates: "
+                    "x_w = k_i T sum(e) = -k_i T 0.16 (1 + ... + 5) rad/s after 5 frames");
+    for (int k = 0; k < 2; k++) {
+        double s = (k == 0) ? 1.0 : -1.0;
+        UT_CHECK(ctl_init(&c, &p, fixed));
+        ctl_in_t in = {s * 100.0, s * 150.0, 0.0, 0.0, 0.0, VDC_CUTOFF};
+        for (unsigned n = 0u; n < 5u; n++) {
+            ctl_step(&c, &in, &o);
+        }
+        UT_CHECK((o.flags & DRIVE_CONTROL_FLAG_FREQ_LIMIT) != 0u);
+        UT_NEAR(o.freq_hz, s * 40.0, 1e-6);
+        UT_NEAR(ctl_x_w(&c), -s * p.ki_speed_hz_per_rad * p.step_s * 0.16 * 15.0, 1e-7);
+    }
+
+    UT_TEST(fixed ? "limits (fixed): the shaft held at +-20 rad/s while the reference ramps "
+                    "away: slip at +-f_sl_lim, speed integrator held from then on"
+                  : "limits (float): the shaft held at +-20 rad/s while the reference ramps "
+                    "away: slip at +-f_sl_lim, speed integrator held from then on");
+    p = drive_control_params_default;
+    UT_CHECK(drive_control_design_f64(&d, &p) == DRIVE_CONTROL_OK);
+    for (int k = 0; k < 2; k++) {
+        double s = (k == 0) ? 1.0 : -1.0;
+        UT_CHECK(ctl_init(&c, &p, fixed));
+        ctl_in_t in = {s * 170.0, s * 20.0, 0.0, 0.0, 0.0, VDC_CUTOFF};
+        double x_held = 0.0;
+        /* kp e alone passes f_sl_lim once e > f_sl_lim / kp: 30 rad/s, or 188 frames of the
+         * 0.16 rad/s ramp, with the default gains. */
+        for (unsigned n = 0u; n < 300u; n++) {
+            ctl_step(&c, &in, &o);
+            if (n == 279u) {
+                x_held = ctl_x_w(&c);
+            }
+        }
+        UT_CHECK((o.flags & DRIVE_CONTROL_FLAG_SLIP_LIMIT) != 0u);
+        UT_NEAR(o.slip_hz, s * d.slip_lim_hz, 1e-6);
+        UT_NEAR(ctl_x_w(&c), x_held, 0.0);
+        UT_CHECK(s * x_held > 0.0 && absd(x_held) <= d.slip_lim_hz + 1e-6);
+    }
+
+    UT_TEST(fixed ? "idle band (fixed): a zero command with the shaft at +-50 rad/s keeps the "
+                    "drive running (braking slip), with the shaft at 3 rad/s it idles"
+                  : "idle band (float): a zero command with the shaft at +-50 rad/s keeps the "
+                    "drive running (braking slip), with the shaft at 3 rad/s it idles");
+    for (int k = 0; k < 2; k++) {
+        double s = (k == 0) ? 1.0 : -1.0;
+        UT_CHECK(ctl_init(&c, &p, fixed));
+        ctl_in_t in = {0.0, s * 50.0, 0.0, 0.0, 0.0, VDC_CUTOFF};
+        ctl_step(&c, &in, &o);
+        UT_CHECK((o.flags & DRIVE_CONTROL_FLAG_IDLE) == 0u);
+        UT_CHECK(s * o.slip_hz < 0.0);
+        UT_NEAR(o.freq_hz, s * 50.0 * 2.0 / TWO_PI + o.slip_hz, 1e-5);
+        in.w = 3.0;
+        ctl_step(&c, &in, &o);
+        UT_CHECK(o.flags == DRIVE_CONTROL_FLAG_IDLE);
+    }
+
+    UT_TEST(fixed ? "current loop (fixed): 200 A measured against a 5 A demand clips v* at "
+                    "zero (m = 0, flag) and holds the current integrator"
+                  : "current loop (float): 200 A measured against a 5 A demand clips v* at "
+                    "zero (m = 0, flag) and holds the current integrator");
+    UT_CHECK(ctl_init(&c, &p, fixed));
+    ctl_in_t in = {0.0, 0.0, 0.0, 0.0, 0.0, VDC_CUTOFF};
+    phase_currents(200.0, 0.3, &in);
+    ctl_current(&c, 5.0, 10.0, 0.5, &in, &o);
+    UT_CHECK((o.flags & DRIVE_CONTROL_FLAG_M_ZERO) != 0u);
+    UT_CHECK(o.m == 0.0 && o.v_demand_v == 0.0);
+    UT_NEAR(ctl_x_i(&c), 0.0, 0.0);
+
+    UT_TEST(fixed ? "current loop (fixed): with v* clipped at zero by a negative integrator, "
+                    "an error pulling out of the clip integrates: x_i += k_i T e (e = 1 A)"
+                  : "current loop (float): with v* clipped at zero by a negative integrator, "
+                    "an error pulling out of the clip integrates: x_i += k_i T e (e = 1 A)");
+    /* 100 A against 5 A at 10 Hz winds x_i down until v* reaches zero (then it is held). */
+    phase_currents(100.0, 0.3, &in);
+    for (unsigned n = 0u; n < 10u; n++) {
+        ctl_current(&c, 5.0, 10.0, 0.5, &in, &o);
+    }
+    UT_CHECK((o.flags & DRIVE_CONTROL_FLAG_M_ZERO) != 0u);
+    double x0 = ctl_x_i(&c);
+    UT_CHECK(x0 < -5.0);
+    phase_currents(4.0, 0.3, &in);
+    ctl_current(&c, 5.0, 0.0, 0.0, &in, &o);
+    UT_CHECK((o.flags & DRIVE_CONTROL_FLAG_M_ZERO) != 0u);
+    UT_NEAR(ctl_x_i(&c) - x0, p.ki_current_v_per_as * p.step_s * 1.0, 1e-5);
+    UT_EQ_INT(ctl_sat(&c), 0);
+}
+
 static void test_measurement_outputs(bool fixed) {
     UT_TEST(fixed ? "measurement (fixed): |i| of a balanced set at 12 angles within 1e-4 A, "
                     "and of an unbalanced set by the Clarke formula; phase increment = "
@@ -769,8 +971,10 @@ static void test_standstill(bool fixed) {
 
 void suite_drive_control(void) {
     test_params();
+    test_params_limits();
     for (unsigned k = 0u; k < 2u; k++) {
         bool fixed = (k == 0u);
+        test_limits(fixed);
         test_measurement_outputs(fixed);
         test_generating_hold(fixed);
         test_standstill(fixed);

@@ -306,6 +306,165 @@ static void test_init(void) {
 }
 
 /*
+ * Each check of induction_motor_coefs_f64 (induction_motor.h: finite and
+ * positive resistances, leakages, Lm, J, ratings; 1 <= p <= 16; a
+ * propeller's drag and inertia finite and not negative), and each constant
+ * row of the fixed twin that can leave its mantissa format.
+ */
+static void test_init_limits(void) {
+    induction_motor_coefs c;
+    const induction_motor_params *p15 = &induction_motor_params_15kw_delta;
+    const propeller_model prop = propeller();
+
+    UT_TEST("coefficients: NULL arguments, each parameter not finite and positive, p outside "
+            "1..16, a propeller with negative or non-finite drag or inertia are refused");
+    UT_EQ_INT(induction_motor_coefs_f64(NULL, p15, NULL, STEP_S), INDUCTION_MOTOR_ERR_NULL);
+    UT_EQ_INT(induction_motor_coefs_f64(&c, NULL, NULL, STEP_S), INDUCTION_MOTOR_ERR_NULL);
+    UT_EQ_INT(induction_motor_init_f64(NULL, p15, NULL, STEP_S), INDUCTION_MOTOR_ERR_NULL);
+    UT_EQ_INT(induction_motor_init_f32(NULL, p15, NULL, STEP_S), INDUCTION_MOTOR_ERR_NULL);
+    for (unsigned k = 0u; k < 10u; k++) {
+        induction_motor_params b = *p15;
+        switch (k) {
+        case 0u: b.rs_ohm = 0.0; break;
+        case 1u: b.rr_ohm = math_inf_f64(); break;
+        case 2u: b.lls_h = math_nan_f64(); break;
+        case 3u: b.llr_h = -1e-3; break;
+        case 4u: b.lm_h = 0.0; break;
+        case 5u: b.j_rotor_kgm2 = 0.0; break;
+        case 6u: b.v_ll_rated_v = -230.0; break;
+        case 7u: b.f_rated_hz = math_inf_f64(); break;
+        case 8u: b.pole_pairs = 0u; break;
+        default: b.pole_pairs = 17u; break;
+        }
+        if (!UT_CHECK(induction_motor_coefs_f64(&c, &b, NULL, STEP_S) ==
+                      INDUCTION_MOTOR_ERR_PARAM)) {
+            ut_info("parameter case %u", k);
+        }
+    }
+    for (unsigned k = 0u; k < 5u; k++) {
+        propeller_model bp = prop;
+        induction_motor_status want = INDUCTION_MOTOR_ERR_PARAM;
+        switch (k) {
+        case 0u: bp.k_drag = math_nan_f64(); break;
+        case 1u: bp.k_drag = -1e-6; break;
+        case 2u: bp.inertia_kgm2 = math_inf_f64(); break;
+        case 3u: bp.inertia_kgm2 = -0.011; break;
+        default: /* A weightless, dragless propeller is allowed: both bounds are inclusive. */
+            bp.k_drag = 0.0;
+            bp.inertia_kgm2 = 0.0;
+            want = INDUCTION_MOTOR_OK;
+            break;
+        }
+        if (!UT_CHECK(induction_motor_coefs_f64(&c, p15, &bp, STEP_S) == want)) {
+            ut_info("propeller case %u", k);
+        }
+    }
+
+    UT_TEST("init (fixed): a constant row that needs more than its 30 bits (29 for the speed "
+            "update) or is not finite is a range error, which the float twin accepts");
+    for (unsigned k = 0u; k < 8u; k++) {
+        induction_motor_params b = *p15;
+        propeller_model bp = prop;
+        const propeller_model *pp = NULL;
+        double h = STEP_S;
+        switch (k) {
+        case 0u: b.rs_ohm = 1e15; break; /* N row of the stator: h Rs a_ss / 2 = 8e13 */
+        case 1u: b.rr_ohm = 1e15; break; /* N row of the rotor */
+        case 2u: /* a_ss = Lr / D = 7e11 1/H: the current row, 2e10 LSB per LSB */
+            b.rs_ohm = 1e-12;
+            b.rr_ohm = 1e-12;
+            b.lls_h = 1e-12;
+            b.llr_h = 1e-12;
+            b.lm_h = 1e-12;
+            break;
+        case 3u: /* (3/2) p Lm / D = 1.2e10: the torque row alone (3e9 LSB per LSB) */
+            b.lls_h = 1e-9;
+            b.llr_h = 1e-9;
+            b.lm_h = 1.0;
+            b.pole_pairs = 16u;
+            h = 1e-5;
+            break;
+        case 4u: b.j_rotor_kgm2 = 1e-14; break;   /* h / 2J = 5e9 against 29 bits */
+        case 5u: b.j_rotor_kgm2 = 0x1p-1074; break; /* h / 2J overflows to infinity */
+        case 6u: /* k_drag 1e7 with J = 1e6: only the load row (5e9) is too large */
+            b.j_rotor_kgm2 = 1e6;
+            bp.k_drag = 1e7;
+            pp = &bp;
+            break;
+        default: /* k_drag 1e10: the eps row h k / J (5e9) */
+            bp.k_drag = 1e10;
+            pp = &bp;
+            break;
+        }
+        bool ok = UT_CHECK(induction_motor_init_q(&motor_a.q, &b, pp, h) ==
+                           INDUCTION_MOTOR_ERR_RANGE);
+        ok = UT_CHECK(induction_motor_init_f32(&motor_a.f, &b, pp, h) == INDUCTION_MOTOR_OK) && ok;
+        if (!ok) {
+            ut_info("range case %u", k);
+        }
+    }
+}
+
+/*
+ * The double twin with the propeller (its use as the reference of the
+ * others): the load torque k w |w| (the propeller's 43.885 N m at 1300 rpm,
+ * test_propeller.c), a locked shaft that keeps its speed, the coast-down
+ * step of induction_motor.h in reverse, and observation.
+ */
+static void test_double_twin_load(void) {
+    static induction_motor_f64 m64;
+    const induction_motor_params *p15 = &induction_motor_params_15kw_delta;
+    const propeller_model prop = propeller();
+    induction_motor_in_f64 in = {0.0, 0.0, 0.0};
+    induction_motor_out_f64 out;
+
+    UT_TEST("double twin with the propeller: locked at 1300 rpm the load is the propeller's "
+            "43.885 N m and the speed stays; unlocked at -100 rad/s without flux the shaft "
+            "coasts by w' = w - (h / J) k w |w| (1 - h k |w| / J)");
+    UT_EQ_INT(induction_motor_init_f64(&m64, p15, &prop, STEP_S), INDUCTION_MOTOR_OK);
+    const double w13 = 1300.0 * MATH_PI_F64 / 30.0;
+    induction_motor_set_speed_f64(&m64, w13, true);
+    for (int k = 0; k < 3; k++) {
+        induction_motor_step_f64(&m64, &in, &out);
+    }
+    UT_NEAR(out.w_radps, w13, 0.0);
+    UT_NEAR(out.t_load_nm, 43.88489217068335, 1e-9);
+    UT_NEAR(out.n_rpm, 1300.0, 1e-9);
+    induction_motor_reset_f64(&m64);
+    induction_motor_set_speed_f64(&m64, -100.0, false);
+    UT_NEAR(m64.t_load, -prop.k_drag * 1e4, 1e-12);
+    induction_motor_step_f64(&m64, &in, &out);
+    const double j = m64.c.j_total_kgm2;
+    const double want = -100.0 + (STEP_S / j) * prop.k_drag * 1e4 *
+                                     (1.0 - STEP_S * prop.k_drag * 100.0 / j);
+    UT_NEAR(out.w_radps, want, 1e-12);
+    UT_CHECK(out.w_radps > -100.0 && out.te_nm == 0.0);
+
+    UT_TEST("double twin: observation returns the stepped state (fluxes, speed, torques bit for "
+            "bit), i_s as the step's phase currents, i_r = (Ls psi_r - Lm psi_s) / D");
+    induction_motor_reset_f64(&m64);
+    for (int k = 0; k < 50; k++) {
+        in.v_a = 100.0;
+        in.v_b = -30.0;
+        in.v_c = -70.0;
+        induction_motor_step_f64(&m64, &in, &out);
+    }
+    induction_motor_obs o;
+    induction_motor_observe_f64(&m64, &o);
+    UT_CHECK(o.psi_s[0] == out.psi_s_alpha_wb && o.psi_s[1] == out.psi_s_beta_wb);
+    UT_CHECK(o.w_radps == out.w_radps && o.te_nm == out.te_nm && o.t_load_nm == out.t_load_nm);
+    UT_NEAR(o.i_s[0], out.i_a, 1e-12);
+    UT_NEAR(o.i_s[1], (out.i_b - out.i_c) / 1.7320508075688772, 1e-9); /* i_beta */
+    const double ls = p15->lls_h + p15->lm_h;
+    const double lr = p15->llr_h + p15->lm_h;
+    const double d = ls * lr - p15->lm_h * p15->lm_h;
+    for (int k = 0; k < 2; k++) {
+        UT_NEAR(o.i_r[k], (ls * o.psi_r[k] - p15->lm_h * o.psi_s[k]) / d, 1e-6);
+    }
+    UT_CHECK(abs_d(out.i_a) > 1.0);
+}
+
+/*
  * Locked speed at slip s, 50 Hz, voltage v_scale * rated: the amplitude is
  * raised linearly over the first 40 ms (no switching-on transient beyond the
  * current base), then held; the torque is averaged over the last period.
@@ -578,6 +737,8 @@ static void test_extremes(void) {
 
 void suite_induction_motor(void) {
     test_init();
+    test_init_limits();
+    test_double_twin_load();
     test_steady_state();
     test_free_acceleration();
     test_double_twin();

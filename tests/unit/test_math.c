@@ -620,6 +620,95 @@ static void test_rounding(void) {
              math_clamp_f32(0.5f, 0.0f, 1.0f) == 0.5f);
 }
 
+/* ---- special paths ------------------------------------------------------- */
+
+/*
+ * The paths that the value tables above do not reach: NaN and infinite
+ * operands, the tiny and huge ranges where a function returns its argument
+ * or a constant, subnormal operands, and the exact shortcuts of pow.
+ * References: C99 Annex F, and values computed once in 300-bit arithmetic,
+ * stored correctly rounded.
+ */
+static void test_inverse_trig_special_f32(void) {
+    UT_TEST("atan, atan2 f32: NaN, tiny x (atan x = x), ratios beyond 2^30, infinities and "
+            "zeros as C99 Annex F, subnormal operands (atan2(3 2^-149, 2^-148) = atan 1.5)");
+    UT_CHECK(canonical_nan_f32(math_atan_f32(math_nan_f32())));
+    UT_CHECK(same_f32(math_atan_f32(1e-5f), 1e-5f) && same_f32(math_atan_f32(-1e-5f), -1e-5f));
+    UT_CHECK(canonical_nan_f32(math_atan2_f32(math_nan_f32(), 1.0f)));
+    UT_CHECK(math_atan2_f32(math_inf_f32(), math_inf_f32()) == MATH_QUARTER_PI_F32);
+    UT_CHECK(math_atan2_f32(-math_inf_f32(), -math_inf_f32()) == -0x1.2d97c8p+1f);
+    UT_CHECK(same_f32(math_atan2_f32(3.0f, math_inf_f32()), 0.0f));
+    UT_CHECK(math_atan2_f32(-3.0f, -math_inf_f32()) == -MATH_PI_F32);
+    UT_CHECK(math_atan2_f32(math_inf_f32(), -2.0f) == MATH_HALF_PI_F32);
+    UT_CHECK(math_atan2_f32(5.0f, 0.0f) == MATH_HALF_PI_F32 &&
+             math_atan2_f32(-5.0f, -0.0f) == -MATH_HALF_PI_F32);
+    /* pi/2 - 1e-10 rounds to pi/2, pi - 1e-10 to pi, atan(1e-10) to 1e-10 (in float). */
+    UT_CHECK(math_atan2_f32(1.0f, 1e-10f) == MATH_HALF_PI_F32);
+    UT_CHECK(ulps_f32(math_atan2_f32(1e-10f, 1.0f), 0x1.b7cdfep-34f) <= 1u);
+    UT_CHECK(math_atan2_f32(1e-10f, -1.0f) == MATH_PI_F32 &&
+             math_atan2_f32(-1e-10f, -1.0f) == -MATH_PI_F32);
+    UT_CHECK(ulps_f32(math_atan2_f32(0x3p-149f, 0x1p-148f), 0x1.f730bep-1f) <= 1u);
+    /* In the second quadrant the angle is pi - atan 1.5. */
+    UT_CHECK(ulps_f32(math_atan2_f32(0x3p-149f, -0x1p-148f), 0x1.145386p+1f) <= 1u);
+
+    UT_TEST("asin, acos f32: NaN outside [-1, 1] and for NaN; acos of +-1e-5 (below 2^-12, "
+            "where sqrt(1 - x^2) = 1 - x^2/2) within 1 ulp of the reference");
+    UT_CHECK(canonical_nan_f32(math_asin_f32(2.0f)) &&
+             canonical_nan_f32(math_acos_f32(math_nan_f32())));
+    UT_CHECK(ulps_f32(math_acos_f32(1e-5f), 0x1.921f0ep+0f) <= 1u);
+    UT_CHECK(ulps_f32(math_acos_f32(-1e-5f), 0x1.92205ep+0f) <= 1u);
+}
+
+static void test_special_f64(void) {
+    UT_TEST("atan2, asin, acos f64: NaN x, infinite y, subnormal operands; acos(+-1e-10) "
+            "within 1 ulp of the reference");
+    UT_CHECK(canonical_nan_f64(math_atan2_f64(1.0, math_nan_f64())));
+    UT_CHECK(math_atan2_f64(math_inf_f64(), 1.0) == MATH_HALF_PI_F64);
+    UT_CHECK(ulps_f64(math_atan2_f64(0x3p-1074, 0x1p-1073), 0x1.f730bd281f69bp-1) <= 1u);
+    UT_CHECK(canonical_nan_f64(math_asin_f64(math_nan_f64())) &&
+             canonical_nan_f64(math_acos_f64(math_nan_f64())));
+    UT_CHECK(ulps_f64(math_acos_f64(1e-10), 0x1.921fb543d4de0p+0) <= 1u);
+    UT_CHECK(ulps_f64(math_acos_f64(-1e-10), 0x1.921fb544b0c50p+0) <= 1u);
+
+    UT_TEST("sin, cos of 0x1.ffe3e803c947ap+92, whose fraction of a quarter turn is above 1/2 "
+            "with its lowest 32 of 128 bits zero (the carry of 1 - fraction runs through "
+            "that word): within 1 ulp of the reference");
+    UT_CHECK(ulps_f64(math_sin_f64(0x1.ffe3e803c947ap+92), 0x1.e5fcbf2e3b649p-2) <= 1u);
+    UT_CHECK(ulps_f64(math_cos_f64(0x1.ffe3e803c947ap+92), -0x1.c2a9ff537231ap-1) <= 1u);
+
+    UT_TEST("sqrt, log, exp: NaN gives the canonical NaN; log f32 of the subnormal 2^-140 "
+            "= -140 ln 2 within 1 ulp; exp(709.78) (2^1024 times a value just below 1) "
+            "within 1 ulp");
+    UT_CHECK(canonical_nan_f32(math_sqrt_f32(math_nan_f32())));
+    UT_CHECK(canonical_nan_f64(math_log_f64(math_nan_f64())) &&
+             canonical_nan_f32(math_log_f32(math_nan_f32())));
+    UT_CHECK(ulps_f32(math_log_f32(0x1p-140f), -0x1.842994p+6f) <= 1u);
+    UT_CHECK(ulps_f64(math_exp_f64(709.78), 0x1.fe9ce5c4c52b4p+1023) <= 1u);
+
+    UT_TEST("pow: the exact shortcuts y = 1, 2, -1 and |x| = 1; |y| > 2^64 underflows to +0 "
+            "when x^y -> 0; a NaN y gives NaN");
+    UT_CHECK(math_pow_f64(-1.0, 3.0) == -1.0 && math_pow_f64(-1.0, 1e20) == 1.0);
+    UT_CHECK(math_pow_f64(3.7, 1.0) == 3.7 && math_pow_f64(-3.7, 1.0) == -3.7);
+    UT_CHECK(math_pow_f64(1.5, 2.0) == 2.25 && math_pow_f64(-0.1, 2.0) == 0.1 * 0.1);
+    UT_CHECK(math_pow_f64(4.0, -1.0) == 0.25 && math_pow_f64(-8.0, -1.0) == -0.125);
+    UT_CHECK(same_f64(math_pow_f64(2.0, -1e20), 0.0) && same_f64(math_pow_f64(0.5, 1e20), 0.0));
+    UT_CHECK(canonical_nan_f64(math_pow_f64(2.0, math_nan_f64())));
+
+    UT_TEST("ceil, round f32, fmod: the remaining cases (C99 Annex F; fmod of subnormals "
+            "2^-120 mod 21 2^-144 = 2^-144 since 2^24 = 1 mod 21)");
+    UT_CHECK(math_ceil_f64(2.5) == 3.0 && math_ceil_f32(2.5f) == 3.0f);
+    UT_CHECK(math_round_f32(1e10f) == 1e10f && math_round_f32(-math_inf_f32()) == -math_inf_f32());
+    UT_CHECK(same_f32(math_round_f32(0.3f), 0.0f) && same_f32(math_round_f32(-0.3f), -0.0f));
+    UT_CHECK(math_round_f32(-0.7f) == -1.0f && math_round_f32(0.5f) == 1.0f);
+    UT_CHECK(canonical_nan_f64(math_fmod_f64(1.0, math_nan_f64())));
+    UT_CHECK(canonical_nan_f32(math_fmod_f32(math_inf_f32(), 2.0f)) &&
+             canonical_nan_f32(math_fmod_f32(1.0f, math_nan_f32())));
+    UT_CHECK(math_fmod_f32(1.5f, 4.0f) == 1.5f && math_fmod_f32(-2.0f, math_inf_f32()) == -2.0f);
+    UT_CHECK(math_fmod_f32(0x7p-149f, 0x2p-149f) == 0x1p-149f);
+    UT_CHECK(math_fmod_f32(0x1p-120f, 0x15p-144f) == 0x1p-144f &&
+             math_fmod_f32(-0x1p-120f, 0x15p-144f) == -0x1p-144f);
+}
+
 /* ---- determinism ---------------------------------------------------------- */
 
 static uint64_t fnv_mix(uint64_t h, uint64_t v) {
@@ -711,5 +800,7 @@ void suite_math(void) {
     test_exp_log_special();
     test_pow();
     test_rounding();
+    test_inverse_trig_special_f32();
+    test_special_f64();
     test_determinism();
 }

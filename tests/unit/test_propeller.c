@@ -86,6 +86,26 @@ static void test_init(void) {
     p = propeller_params_default;
     p.alpha2 = zero / zero;
     UT_CHECK(propeller_init(&m, &p) == PROPELLER_ERR_PARAM);
+
+    UT_TEST("init: refuses a non-positive density and efficiency and a negative drag "
+            "coefficient; accepts efficiency 1, C_D 0 and I0 0 (inclusive bounds), giving "
+            "k_drag = 0");
+    p = propeller_params_default;
+    p.rho_kgpm3 = -1025.0;
+    UT_CHECK(propeller_init(&m, &p) == PROPELLER_ERR_PARAM);
+    p = propeller_params_default;
+    p.efficiency = 0.0;
+    UT_CHECK(propeller_init(&m, &p) == PROPELLER_ERR_PARAM);
+    p = propeller_params_default;
+    p.drag_coeff = -1e-3;
+    UT_CHECK(propeller_init(&m, &p) == PROPELLER_ERR_PARAM);
+    p = propeller_params_default;
+    p.efficiency = 1.0;
+    p.drag_coeff = 0.0;
+    p.inertia_kgm2 = 0.0;
+    UT_CHECK(propeller_init(&m, &p) == PROPELLER_OK);
+    UT_NEAR(m.k_drag, 0.0, 0.0);
+    UT_NEAR(propeller_drag_torque_f64(&m, 150.0), 0.0, 0.0);
 }
 
 void suite_propeller(void) {

@@ -38,6 +38,83 @@ static void expect_error(const char *text, unsigned line, const char *field) {
     UT_CHECK(err.message[0] != '\0');
 }
 
+/* True when the message of the last error contains word. */
+static bool message_has(const char *word) {
+    for (size_t i = 0; err.message[i] != '\0'; i++) {
+        size_t k = 0;
+        while (word[k] != '\0' && err.message[i + k] == word[k]) {
+            k++;
+        }
+        if (word[k] == '\0') {
+            return true;
+        }
+    }
+    return false;
+}
+
+/*
+ * The remaining forms of scenario.h's grammar and errors: pairs without a
+ * name, a value or an '=', the hint at the deg suffix for angles only, tab
+ * separators, a last line without a newline, and a NUL byte in the text.
+ */
+static void test_more_forms(void) {
+    UT_TEST("scenario errors: a field without '=' or without a name, in init, at and zigzag; "
+            "a zig-zag without rudder or with a bad value");
+    expect_error("init u_mps\n", 1, "u_mps");
+    expect_error("at 1 =5\n", 1, "=5");
+    expect_error("zigzag rudder\n", 1, "rudder");
+    expect_error("zigzag heading=10deg\n", 1, "zigzag");
+    expect_error("zigzag rudder=abc heading=10deg\n", 1, "rudder");
+    expect_error("zigzag rudder=10deg heading=5deg start=soon\n", 1, "start");
+
+    UT_TEST("scenario errors: a malformed angle names the deg suffix in its message, a "
+            "malformed speed does not");
+    expect_error("at 1 rudder=x\n", 1, "rudder");
+    UT_CHECK(message_has("suffix deg"));
+    expect_error("at 1 n_rpm=x\n", 1, "n_rpm");
+    UT_CHECK(!message_has("deg"));
+
+    UT_TEST("scenario: tabs separate fields, the last line needs no newline");
+    UT_CHECK(parse("duration\t30\nat\t2\trudder=-5deg\tn_rpm=900"));
+    UT_NEAR(scn.duration_s, 30.0, 0.0);
+    UT_EQ_INT(scn.n_events, 2);
+    UT_EQ_INT(scn.events[0].command, SCN_RUDDER);
+    UT_NEAR(scn.events[0].value, -5.0 * 0.017453292519943295, 1e-15);
+    UT_NEAR(scn.events[1].value, 900.0, 0.0);
+    UT_EQ_INT(scn.events[1].line, 2);
+
+    UT_TEST("scenario: the fault commands read their named parts as 1, 2, ... in the order "
+            "of scenario.h (b- = 4, c = 3, stern = 2, on = 1) and their numbers in range");
+    UT_CHECK(parse("at 7 switch_open=b- leg_short=c dc_cap=0.5 battery_cutoff=on "
+                   "fin_jam=stern current_offset=-2.5\n"));
+    UT_EQ_INT(scn.n_events, 6);
+    static const int want_cmd[6] = {SCN_FAULT_SWITCH_OPEN,    SCN_FAULT_LEG_SHORT,
+                                    SCN_FAULT_DC_CAP,         SCN_FAULT_BATTERY_CUTOFF,
+                                    SCN_FAULT_FIN_JAM,        SCN_FAULT_CURRENT_OFFSET};
+    static const double want_val[6] = {4.0, 3.0, 0.5, 1.0, 2.0, -2.5};
+    for (size_t i = 0; i < 6u && i < scn.n_events; i++) {
+        UT_EQ_INT(scn.events[i].command, want_cmd[i]);
+        UT_NEAR(scn.events[i].value, want_val[i], 0.0);
+        UT_NEAR(scn.events[i].t_s, 7.0, 0.0);
+    }
+    UT_CHECK(SCN_FIRST_FAULT == SCN_FAULT_SWITCH_OPEN);
+
+    UT_TEST("scenario errors: a fault part that does not exist names the field and lists "
+            "the parts; a fault number out of its range");
+    expect_error("at 1 switch_open=d+\n", 1, "switch_open");
+    UT_CHECK(message_has("a+, a-, b+, b-, c+, c-") && message_has("d+"));
+    expect_error("at 1 battery_cutoff=off\n", 1, "battery_cutoff");
+    expect_error("at 1 fin_jam=keel\n", 1, "fin_jam");
+    expect_error("at 1 dc_cap=0.01\n", 1, "dc_cap");
+    expect_error("at 1 current_offset=60\n", 1, "current_offset");
+
+    UT_TEST("scenario errors: a NUL byte inside the text is a control character");
+    static const char with_nul[] = "duration 10\nat 1 n_rpm=5\0\n";
+    UT_CHECK(!scenario_parse(&scn, with_nul, sizeof with_nul - 1u, &err));
+    UT_EQ_INT(err.line, 2);
+    UT_CHECK(message_has("0x00"));
+}
+
 void suite_scenario(void) {
     UT_TEST("scenario: every keyword, units and comments are read");
     const char *good = "# a comment line\n"
@@ -123,4 +200,5 @@ void suite_scenario(void) {
     }
     many[n] = '\0';
     expect_error(many, SCENARIO_MAX_EVENTS + 1u, "n_rpm");
+    test_more_forms();
 }

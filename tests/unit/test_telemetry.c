@@ -155,9 +155,38 @@ static void test_damage(void) {
     UT_CHECK(tlm_status_text(TLM_BAD_CRC)[0] != '\0');
 }
 
+static bool same_text(const char *a, const char *b) {
+    size_t k = 0u;
+    while (a[k] != '\0' && a[k] == b[k]) {
+        k++;
+    }
+    return a[k] == b[k];
+}
+
+static void test_status_text(void) {
+    UT_TEST("status texts: each of the six statuses has its own non-empty text, and so has "
+            "an unknown value");
+    const tlm_status all[6] = {TLM_OK,          TLM_TRUNCATED,  TLM_BAD_SYNC,
+                               TLM_BAD_TYPE,    TLM_BAD_LENGTH, TLM_BAD_CRC};
+    const char *texts[7];
+    for (size_t k = 0u; k < 6u; k++) {
+        texts[k] = tlm_status_text(all[k]);
+    }
+    texts[6] = tlm_status_text((tlm_status)99);
+    bool ok = true;
+    for (size_t k = 0u; k < 7u; k++) {
+        ok = ok && texts[k] != NULL && texts[k][0] != '\0';
+        for (size_t j = 0u; j < k; j++) {
+            ok = ok && !same_text(texts[j], texts[k]);
+        }
+    }
+    UT_CHECK(ok);
+}
+
 void suite_telemetry(void) {
     test_crc();
     test_record();
     test_start_end();
     test_damage();
+    test_status_text();
 }

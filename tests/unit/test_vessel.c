@@ -449,6 +449,98 @@ static void test_init(void) {
     UT_CHECK(vessel_init(m, &cfg) == VESSEL_OK);
 }
 
+/*
+ * Each range check of vessel_init (vessel.h and vessel_params.h: positive
+ * length, g, rho, W, B and inertias; non-negative drag and hull sizes;
+ * positive finite limits and lag; frame in (0, 1]; a valid propeller).
+ */
+static void test_init_fields(void) {
+    UT_TEST("init: each physical field out of its range, a limit that is not finite, a "
+            "frame above 1 s and an invalid propeller are refused; NULL propeller selects "
+            "the default");
+    vessel_config cfg;
+    vessel_model *m = &vm_a;
+    vessel_params p;
+    vessel_config_default(&cfg);
+    cfg.params = &p;
+    for (unsigned k = 0u; k < 16u; k++) {
+        p = vessel_params_npsauv2;
+        switch (k) {
+        case 0u: p.length_m = 0.0; break;
+        case 1u: p.gravity_mps2 = -9.81; break;
+        case 2u: p.rho_kgpm3 = 0.0; break;
+        case 3u: p.weight_n = 0.0; break;
+        case 4u: p.buoyancy_n = -1.0; break;
+        case 5u: p.ix_kgm2 = 0.0; break;
+        case 6u: p.iy_kgm2 = 0.0; break;
+        case 7u: p.iz_kgm2 = -1.0; break;
+        case 8u: p.cdy = -0.1; break;
+        case 9u: p.cdz = -0.1; break;
+        case 10u: p.hx_m = -0.1; break;
+        case 11u: p.bx_m = -0.1; break;
+        case 12u: p.cd0 = -0.1; break;
+        case 13u: p.fin_limit_rad = math_inf_f64(); break;
+        case 14u: p.shaft_limit_rpm = -1500.0; break;
+        default: p.actuator_tau_s = math_nan_f64(); break;
+        }
+        if (!UT_CHECK(vessel_init(m, &cfg) == VESSEL_ERR_PARAM)) {
+            ut_info("field case %u", k);
+        }
+    }
+    cfg.params = NULL;
+    cfg.step_s = 1.5;
+    UT_CHECK(vessel_init(m, &cfg) == VESSEL_ERR_PARAM);
+    cfg.step_s = 1.0;
+    propeller_params pp = propeller_params_default;
+    pp.diameter_m = 0.0;
+    cfg.propeller = &pp;
+    UT_CHECK(vessel_init(m, &cfg) == VESSEL_ERR_PARAM);
+    cfg.propeller = NULL;
+    UT_CHECK(vessel_init(m, &cfg) == VESSEL_OK);
+    propeller_model def;
+    UT_CHECK(propeller_init(&def, &propeller_params_default) == PROPELLER_OK);
+    UT_NEAR(m->prop.k_drag, def.k_drag, 0.0);
+    UT_NEAR(m->step_s, 1.0, 0.0);
+}
+
+static void test_counters_and_pitch(void) {
+    vessel_model *m = model_with(&vm_a, VESSEL_PROP_PAPER, VESSEL_SHAFT_LAG);
+    double x[VESSEL_NSTATES], dx[VESSEL_NSTATES];
+
+    UT_TEST("event counters saturate at UINT32_MAX instead of wrapping to 0");
+    const vessel_cmd big = {0.6, 0.0, 0.0, 0.0, 1000.0, 0.0, 0.0, 0.0};
+    cruise_state(x);
+    m->event_steps[VESSEL_EVENT_ACTUATOR_LIMIT] = UINT32_MAX - 1u;
+    (void)vessel_step(m, x, &big);
+    UT_CHECK(m->event_steps[VESSEL_EVENT_ACTUATOR_LIMIT] == UINT32_MAX);
+    (void)vessel_step(m, x, &big);
+    UT_CHECK(m->event_steps[VESSEL_EVENT_ACTUATOR_LIMIT] == UINT32_MAX);
+    vessel_reset_counters(m);
+    UT_EQ_INT(m->event_steps[VESSEL_EVENT_ACTUATOR_LIMIT], 0);
+
+    UT_TEST("Euler rates near theta = 90 deg: the divisor cos(theta) is held at 1e-12 with "
+            "its sign, psi_dot = (q sin(phi) + r cos(phi)) / (+-1e-12) on either side; at "
+            "theta = 180 deg (cos = -1) no guard acts and psi_dot = -(q sin(phi) + r cos(phi))");
+    const vessel_cmd cmd = {0.0, 0.0, 0.0, 0.0, 1000.0, 0.0, 0.0, 0.0};
+    cruise_state(x);
+    x[VESSEL_PHI_RAD] = 0.1;
+    x[VESSEL_Q_RADPS] = 0.01;
+    x[VESSEL_R_RADPS] = 0.02;
+    const double rate = 0.01 * math_sin_f64(0.1) + 0.02 * math_cos_f64(0.1);
+    for (int k = 0; k < 2; k++) {
+        double side = (k == 0) ? 1.0 : -1.0;
+        x[VESSEL_THETA_RAD] = MATH_HALF_PI_F64 + side * 1e-13;
+        unsigned ev = vessel_derivatives(m, x, &cmd, dx);
+        UT_CHECK((ev & (1u << VESSEL_EVENT_PITCH_90)) != 0u);
+        UT_CHECK(all_finite(dx));
+        UT_NEAR(dx[VESSEL_PSI_RAD], -side * rate * 1e12, 1e-9 * rate * 1e12);
+    }
+    x[VESSEL_THETA_RAD] = MATH_PI_F64;
+    unsigned ev = vessel_derivatives(m, x, &cmd, dx);
+    UT_CHECK((ev & (1u << VESSEL_EVENT_PITCH_90)) == 0u);
+    UT_NEAR(dx[VESSEL_PSI_RAD], -rate, 1e-15);
+}
+
 /* FNV-1a over the bits of the state, to compare host and target runs. */
 static uint64_t state_hash(const double x[VESSEL_NSTATES]) {
     uint64_t h = 14695981039346656037ull;
@@ -487,5 +579,7 @@ void suite_vessel(void) {
     test_guards();
     test_no_nan();
     test_init();
+    test_init_fields();
+    test_counters_and_pitch();
     test_determinism();
 }
