@@ -14,7 +14,8 @@ mkdir -p "$out"
 for v in linux-cov-fixed linux-cov-float; do
     find "$BUILD/$v" -name '*.gcda' -delete
     "$BUILD/$v/unit_tests" > "$out/$v.log" 2>&1 || { echo "unit tests failed: $out/$v.log"; exit 1; }
-    lcov $rc --quiet --capture --directory "$BUILD/$v/obj/src" --base-directory . \
+    lcov $rc --quiet --capture --directory "$BUILD/$v/obj/src" --directory "$BUILD/$v/obj/tests" \
+        --base-directory . \
         --output-file "$out/$v.info" 2>>"$out/lcov.log"
 done
 lcov $rc --quiet -a "$out/linux-cov-fixed.info" -a "$out/linux-cov-float.info" \

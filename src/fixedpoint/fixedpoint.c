@@ -100,7 +100,10 @@ q15_t fp_from_f32_cnt_q15(float x, uint32_t *sat_count) {
 /*
  * In single precision every float of magnitude 2^23 or more is an integer,
  * so no float lies in (2^31 - 1, 2^31) and the upper clamp is at 2^31
- * itself; -2^31 is in range and exact.
+ * itself; -2^31 is in range and exact. Those integers convert exactly and
+ * are returned before the rounding step, which thus sees |t| < 2^23 and
+ * cannot overflow when it corrects t by one (the early return changes no
+ * result: their fractional part is 0).
  */
 q31_t fp_from_f32_cnt_q31(float x, uint32_t *sat_count) {
     float scaled = x * 2147483648.0f;
@@ -118,6 +121,9 @@ q31_t fp_from_f32_cnt_q31(float x, uint32_t *sat_count) {
     if (scaled < -2147483648.0f) {
         fp_count_sat(sat_count);
         return Q31_MIN;
+    }
+    if (scaled >= 8388608.0f || scaled <= -8388608.0f) {
+        return (int32_t)scaled;
     }
     t = (int32_t)scaled;
     frac = scaled - (float)t;

@@ -188,13 +188,16 @@ static inline q15_t fp_mul_cnt_q15(q15_t a, q15_t b, uint32_t *sat_count) {
 }
 
 /*
- * acc + a * b, all Q15. The product is rounded to Q15 (ties up) and added
- * in int32_t; only the final sum saturates, so an intermediate +1 from
- * (-1) * (-1) is not clamped when acc brings the sum back into range.
+ * acc + a * b, all Q15: acc + round(a * b / 2^15), the product rounded to
+ * Q15 (ties up); only the final sum saturates, so an intermediate +1 from
+ * (-1) * (-1) is not clamped when acc brings the sum back into range. It is
+ * formed as the rounding of the exact Q30 sum acc * 2^15 + a * b, which
+ * gives the same value because acc * 2^15 is a whole number of Q15 steps;
+ * that sum lies in [-2^31 + 2^15, 2^31 - 2^15], so it fits int32_t.
  */
 static inline q15_t fp_mac_cnt_q15(q15_t acc, q15_t a, q15_t b, uint32_t *sat_count) {
-    int32_t product = fp_shr_round_i32((int32_t)a * (int32_t)b, 15u);
-    return fp_sat_cnt_q15((int32_t)acc + product, sat_count);
+    int32_t sum_q30 = (int32_t)acc * 32768 + (int32_t)a * (int32_t)b;
+    return fp_sat_cnt_q15(fp_shr_round_i32(sum_q30, 15u), sat_count);
 }
 
 /* -x, Q15; -(-1) saturates to 32767. */
@@ -228,12 +231,14 @@ static inline q31_t fp_mul_cnt_q31(q31_t a, q31_t b, uint32_t *sat_count) {
 }
 
 /*
- * acc + a * b, all Q31. The product is rounded to Q31 (ties up), added in
- * int64_t, and only the sum saturates.
+ * acc + a * b, all Q31: acc + round(a * b / 2^31), the product rounded to
+ * Q31 (ties up); only the sum saturates. As fp_mac_cnt_q15(), it is the
+ * rounding of the exact Q62 sum acc * 2^31 + a * b, which lies in
+ * [-2^63 + 2^31, 2^63 - 2^31] and so fits int64_t.
  */
 static inline q31_t fp_mac_cnt_q31(q31_t acc, q31_t a, q31_t b, uint32_t *sat_count) {
-    int64_t product = fp_shr_round_i64((int64_t)a * (int64_t)b, 31u);
-    return fp_sat_cnt_q31((int64_t)acc + product, sat_count);
+    int64_t sum_q62 = (int64_t)acc * (int64_t)2147483648 + (int64_t)a * (int64_t)b;
+    return fp_sat_cnt_q31(fp_shr_round_i64(sum_q62, 31u), sat_count);
 }
 
 /* -x, Q31; -(-1) saturates to 2^31 - 1. */

@@ -267,6 +267,20 @@ static void test_mul_q15(void) {
     UT_EQ_INT(sat, 1);
 }
 
+/*
+ * Operand i < 80 of a Q15 sweep that reaches both ends of the range: the 8
+ * lowest values, 64 values 1023 apart in between, the 8 highest.
+ */
+static int32_t operand_q15_ends(unsigned i) {
+    if (i < 8u) {
+        return -32768 + (int32_t)i;
+    }
+    if (i >= 72u) {
+        return 32767 - (int32_t)(79u - i);
+    }
+    return -32760 + (int32_t)(i - 8u) * 1023;
+}
+
 static void test_mac_neg_abs_q15(void) {
     uint32_t sat = 0u;
 
@@ -279,6 +293,29 @@ static void test_mac_neg_abs_q15(void) {
     UT_EQ_INT(fp_mac_cnt_q15(-32000, -16384, 16384, &sat), -32768);
     UT_EQ_INT(sat, 2);
     UT_EQ_INT(fp_mac_q15(1000, 16384, -16384), -7192);
+
+    UT_TEST("Q15 mac at the ends of the exact Q30 sum acc*2^15 + a*b (up to 2^31 - 2^15 in "
+            "magnitude); reference: exact int64 sum, rounded and clamped");
+    {
+        static const int32_t acc_end[] = {-32768, -32767, -1, 0, 1, 32766, 32767};
+        unsigned bad = 0u;
+        unsigned i;
+        unsigned ia;
+        unsigned ib;
+
+        for (i = 0u; i < sizeof acc_end / sizeof acc_end[0]; i++) {
+            for (ia = 0u; ia < 80u; ia++) {
+                for (ib = 0u; ib < 80u; ib++) {
+                    int32_t a = operand_q15_ends(ia);
+                    int32_t b = operand_q15_ends(ib);
+                    int64_t ref = ref_clamp(acc_end[i] + ref_round_pow2((int64_t)a * b, 15u),
+                                            -32768, 32767);
+                    bad += (fp_mac_q15((q15_t)acc_end[i], (q15_t)a, (q15_t)b) != ref) ? 1u : 0u;
+                }
+            }
+        }
+        UT_EQ_INT(bad, 0);
+    }
 
     UT_TEST("Q15 neg/abs: exact except -(-1) and |-1|, which give 32767 and count");
     UT_EQ_INT(fp_neg_cnt_q15(32767, &sat), -32767);
@@ -350,6 +387,15 @@ static void test_mul_mac_q31(void) {
     UT_EQ_INT(fp_mac_cnt_q31(INT32_MAX, 1073741824, 1073741824, &sat), INT32_MAX);
     UT_EQ_INT(fp_mac_cnt_q31(INT32_MIN, -1073741824, 1073741824, &sat), INT32_MIN);
     UT_EQ_INT(sat, 3);
+
+    UT_TEST("Q31 mac at the ends of the exact Q62 sum acc*2^31 + a*b (up to 2^63 - 2^31)");
+    UT_EQ_INT(fp_mac_cnt_q31(INT32_MAX, INT32_MIN, INT32_MIN, &sat), INT32_MAX);
+    UT_EQ_INT(fp_mac_cnt_q31(INT32_MIN, INT32_MIN, INT32_MAX, &sat), INT32_MIN);
+    UT_EQ_INT(sat, 5);
+    UT_EQ_INT(fp_mac_cnt_q31(INT32_MIN, INT32_MIN, INT32_MIN, &sat), 0);
+    UT_EQ_INT(fp_mac_cnt_q31(INT32_MAX, INT32_MIN, INT32_MAX, &sat), 0);
+    UT_EQ_INT(fp_mac_cnt_q31(-1, INT32_MAX, INT32_MAX, &sat), INT32_MAX - 2);
+    UT_EQ_INT(sat, 5);
 }
 
 static void test_neg_abs_q31(void) {
@@ -537,6 +583,18 @@ static void test_from_f32(void) {
     UT_EQ_INT(fp_from_f32_cnt_q31(nan, &sat), 0);
     UT_EQ_INT(sat, 3);
     UT_EQ_INT(fp_from_f32_q31(-0.5f), -1073741824);
+
+    UT_TEST("float -> Q31 around 2^23 LSB, where floats stop having fractional parts");
+    sat = 0u;
+    UT_EQ_INT(fp_from_f32_cnt_q31(8388606.5f / 2147483648.0f, &sat), 8388607);
+    UT_EQ_INT(fp_from_f32_cnt_q31(8388607.5f / 2147483648.0f, &sat), 8388608);
+    UT_EQ_INT(fp_from_f32_cnt_q31(8388608.0f / 2147483648.0f, &sat), 8388608);
+    UT_EQ_INT(fp_from_f32_cnt_q31(8388610.0f / 2147483648.0f, &sat), 8388610);
+    UT_EQ_INT(fp_from_f32_cnt_q31(-8388606.5f / 2147483648.0f, &sat), -8388607);
+    UT_EQ_INT(fp_from_f32_cnt_q31(-8388607.5f / 2147483648.0f, &sat), -8388608);
+    UT_EQ_INT(fp_from_f32_cnt_q31(-8388608.0f / 2147483648.0f, &sat), -8388608);
+    UT_EQ_INT(fp_from_f32_cnt_q31(-8388610.0f / 2147483648.0f, &sat), -8388610);
+    UT_EQ_INT(sat, 0);
 }
 
 static void test_to_float_and_pu(void) {
