@@ -36,11 +36,14 @@
  *                 except here, so results do not depend on where a fast
  *                 tick preempts the slower task.
  *   medium task   drive_medium_task(): one motor step on the frame's input
- *                 buffer, the controller when due, the slow sums.
- *   slow boundary drive_slow_exchange(), called by the medium task at a
- *                 slow-frame boundary: the slow frame's measurements out,
- *                 the slow segment's commands (battery companion, speed
- *                 command) in.
+ *                 buffer, the next frame's reference ramps and EMF, the slow
+ *                 sums; at a control boundary it takes the controller's last
+ *                 result and latches its next inputs; at a slow boundary it
+ *                 hands the slow frame's raw sums over.
+ *   control task  drive_control_task(): the controller, below the medium
+ *                 task; its result is due at the next control boundary.
+ *   background    drive_slow_measure(), drive_battery_next(),
+ *                 drive_fault_request(): the slow segment's side, in SI.
  */
 #ifndef UUV_DRIVE_SEGMENT_H
 #define UUV_DRIVE_SEGMENT_H
@@ -318,7 +321,6 @@ typedef struct {
     drive_control_in_f32 ctl_in;
     drive_control_out_f32 ctl_out;
     bool ctl_done;
-    uint32_t ctl_sat, ctl_sat_taken;
     float speed_cmd;            /* [rad/s] */
     drive_slow_sums slow, slow_out;
     float w_filt;

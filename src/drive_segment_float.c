@@ -279,7 +279,6 @@ void drive_medium_task(drive_segment *d, bool control_due, bool slow_boundary) {
     if (control_due) {
         if (d->ctl_done) {
             d->cmd = d->ctl_out;
-            d->ctl_sat_taken = d->ctl_sat;
             d->ctl_done = false;
             d->out.cmd = d->cmd;
             d->out.cmd_new = true;
@@ -305,8 +304,7 @@ void drive_medium_task(drive_segment *d, bool control_due, bool slow_boundary) {
         w->v_dc_end = d->stage->v_dc;
         w->cmd = d->cmd;
         w->trip = d->trip;
-        w->saturations = s->sat + d->pwm.sat_count + d->avg.mod.sat_count + d->ctl_sat_taken +
-                         d->ps_clamps;
+        w->saturations = s->sat + d->pwm.sat_count + d->avg.mod.sat_count + d->ps_clamps;
         d->slow_out = *w;
         *w = (drive_slow_sums){0};
     }

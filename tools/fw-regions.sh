@@ -5,10 +5,10 @@
 #
 #   sh tools/fw-regions.sh IMAGE.elf
 #
-# Regions: fast (SysTick_Handler), medium (PendSV_Handler, its runs marked
-# by whether they ran the controller and the slow-frame exchange),
-# background (fw_background_step), and, inside them, drive_fast
-# (drive_fast_tick) and control (the controller's step). A region is
+# Regions: fast (SysTick_Handler), medium (PendSV_Handler: the motor
+# task), control (Irq_Handler: the controller task), background
+# (fw_background_step), and, inside them, drive_fast (drive_fast_tick) and
+# controller (the controller's step). A region is
 # usable when every return of the function is an unconditional return
 # instruction and no branch leaves it (a tail call would end it without a
 # return); the tick handlers and the background step are written so, and
@@ -87,9 +87,7 @@ control=drive_control_step_q
 region fast isr SysTick_Handler required
 region medium isr PendSV_Handler required
 region background call fw_background_step required
+region control isr Irq_Handler required
 region drive_fast call drive_fast_tick
-region control call "$control"
-[ -n "$(sym $control)" ] && printf 'mark=medium:control:%s\n' "$(entry $control)"
-[ -n "$(sym drive_slow_exchange)" ] &&
-    printf 'mark=medium:exchange:%s\n' "$(entry drive_slow_exchange)"
+region controller call "$control"
 exit $status

@@ -60,28 +60,28 @@ $sep
    "fast_tick_insn_max": $(j fast_tick max), "drive_fast_insn_mean": $(j drive_fast mean),
    "motor_tick_insn_mean": $(j motor_tick mean), "motor_tick_insn_max": $(j motor_tick max),
    "control_tick_insn_mean": $(j control_tick mean), "control_tick_insn_max": $(j control_tick max),
-   "slow_boundary_tick_insn_max": $(j slow_boundary_tick max),
    "controller_insn_max": $(j controller max),
    "background_step_insn_mean": $(j background_step mean),
    "background_step_insn_max": $(j background_step max),
    "load_fast_at_shift3": $(load fast), "load_medium_at_shift3": $(load medium),
+   "load_control_at_shift3": $(load control),
    "load_background_at_shift3": $(load background),
    "flash_bytes": $fw_flash, "ram_bytes": $fw_ram, "stack_bytes": $fw_stack_worst,
    "stack_reserved_bytes": $fw_stack_reserved, "stack_measured_bytes": $(j stack_used_bytes),
    "csv_identical": $identical}
 EOF
     sep=","
-    printf '%-14s %-5s %6s %6s %5s/%-5s %6s %5s %6s %6s %6s %8s %4s %5s %s\n' "$machine" "$num" \
+    printf '%-14s %-5s %6s %6s %5s/%-5s %6s %5s %6s %6s %8s %4s %5s %s\n' "$machine" "$num" \
         "$fw_flash" "$fw_ram" "$fw_stack_worst" "$fw_stack_reserved" "$(j fast_tick mean)" \
         "$(j fast_tick max)" "$(j motor_tick max)" "$(j control_tick max)" \
-        "$(j slow_boundary_tick max)" "$(j background_step max)" "${fw_overruns_first:-?}" \
+        "$(j background_step max)" "${fw_overruns_first:-?}" \
         "$ps" "$identical" >>"$rows"
 done
 printf '\n]\n' >>"$json.partial"
 mv "$json.partial" "$json"
 echo "firmware simulation, $duration s of $scenario; instructions per invocation (the run"
 echo "at the largest shift <= 3 without overrun); overruns at shift 3 (8 ns per instruction)"
-printf '%-14s %-5s %6s %6s %11s %6s %5s %6s %6s %6s %8s %4s %5s %s\n' machine build flash ram \
-    "stack/resv" "fast" "max" "motor" "ctrl" "slowb" "bg max" "ovr3" "pass" "csv=desk"
+printf '%-14s %-5s %6s %6s %11s %6s %5s %6s %6s %8s %4s %5s %s\n' machine build flash ram \
+    "stack/resv" "fast" "max" "motor" "ctrl" "bg max" "ovr3" "pass" "csv=desk"
 cat "$rows"
 echo "written $json"

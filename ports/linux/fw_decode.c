@@ -225,11 +225,9 @@ static const struct {
 } insn_names[] = {
     {"fast_tick", "fast"},
     {"drive_fast", "drive_fast"},
-    {"medium_tick", "medium"},
-    {"motor_tick", "medium.plain"},
-    {"control_tick", "medium.control"},
-    {"slow_boundary_tick", "medium.control.exchange"},
-    {"controller", "control"},
+    {"motor_tick", "medium"},
+    {"control_tick", "control"},
+    {"controller", "controller"},
     {"background_step", "background"},
 };
 
@@ -251,11 +249,11 @@ static void json_insn(FILE *f, const insn_counts *c) {
 /* Share of the simulated time each rate's instructions take at 2^shift ns each. */
 static void json_load(FILE *f, const insn_counts *c, const stream *s, int shift) {
     double span_ns = (double)s->end.fast * (double)s->start.fast_ns;
-    static const char *const rates[3] = {"fast", "medium", "background"};
+    static const char *const rates[4] = {"fast", "medium", "control", "background"};
     double total = 0.0;
     fprintf(f, "  \"cpu_load\": {");
     bool all = true;
-    for (int i = 0; i < 3; i++) {
+    for (int i = 0; i < 4; i++) {
         const insn_stat *st = find_stat(c, rates[i]);
         if (st == NULL || !(span_ns > 0.0)) {
             fprintf(f, "\"%s\": null, ", rates[i]);
