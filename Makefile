@@ -122,8 +122,10 @@ ARM_COMMON := $(COMMON) -O2 -g -ffreestanding -fno-tree-loop-distribute-patterns
 # The files of the 2 us tick are compiled without GCC's first instruction
 # scheduling pass: on Thumb-2 it hoists loads and raises register pressure,
 # and the spills cost the fast tick about 20 instructions (docs/firmware.md).
+# Without sibling calls, each measured function returns through its own
+# exit (tools/fw-regions.sh measures from entry to return).
 FW_FAST_C := src/drive_segment_fixed.c src/drive_segment_float.c src/executive.c
-FW_FAST_FLAGS := -fno-schedule-insns
+FW_FAST_FLAGS := -fno-schedule-insns -fno-optimize-sibling-calls
 FW_SCENARIO_EVENTS ?= 64
 FW_STACK_BYTES ?= 3072
 FW_SIM_C := ports/cortexm/fw_main.c

@@ -8,8 +8,15 @@
 #   make fuzz-replay  every seed in tests/fuzz/corpus_*/ through its harness
 #   make coverage   gcov/lcov branch coverage of the host unit tests, per folder
 #   make san-sim    the 60 s desk simulation under ASan + UBSan, both builds
+#   make soak       one hour of the soak mission per build with the energy
+#                   audit (SOAK_SECONDS; make test runs 600 s of it)
 
-.PHONY: lint prove fuzz fuzz-build fuzz-replay coverage san-sim
+.PHONY: lint prove fuzz fuzz-build fuzz-replay coverage san-sim soak
+
+SOAK_SECONDS ?= 3600
+soak: $(BUILD)/linux-fixed/uuvsim $(BUILD)/linux-float/uuvsim
+	@for v in fixed float; do echo "soak, $$v build, $(SOAK_SECONDS) s:"; \
+	    sh tests/host/test_soak.sh $(BUILD)/linux-$$v/uuvsim $(SOAK_SECONDS) || exit 1; done
 
 FUZZ_HARNESSES := scenario cli decode
 FUZZ_SECONDS ?= 20

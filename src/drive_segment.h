@@ -91,6 +91,7 @@ typedef struct {
     uint32_t medium_per_control; /* motor frames per controller frame */
     uint32_t medium_per_slow;    /* motor frames per slow frame (the speed filter's time constant) */
     uint32_t averaged_substeps;  /* power-stage substeps per step of the averaged inverter */
+    bool energy_audit;        /* count the filter's and the motor's losses (general fast path) */
     double v_dc0_v;           /* [V] initial DC-link voltage */
 } drive_config;
 
@@ -110,17 +111,31 @@ typedef struct {
     uint8_t leg_short;        /* 0: none; 1..3: leg a, b, c shoot-through (trips) */
     double dc_cap_frac;       /* [-] DC-link capacitance left, (0, 1] */
     double current_offset_a;  /* [A] offset of the controller's phase-a measurement */
+    uint8_t phase_open;       /* 0: none; 1..3: motor phase a, b, c disconnected */
+    double load_factor;       /* [-] on the propeller's load torque (fouling), 1..10; 1: clean */
 } drive_faults;
 
 /* Why the drive's protection blocked the gates (0: it has not). */
 typedef enum {
     DRIVE_TRIP_NONE = 0,
     DRIVE_TRIP_LEG_SHORT,     /* desaturation of a shorted leg */
-    DRIVE_TRIP_UNDERVOLTAGE   /* DC link below DRIVE_UV_TRIP_V */
+    DRIVE_TRIP_UNDERVOLTAGE,  /* DC link below DRIVE_UV_TRIP_V */
+    DRIVE_TRIP_PHASE_LOSS     /* a motor phase carries no current while the others do */
 } drive_trip;
 
 /* [V] under-voltage trip of the DC link (the pack's cut-off is 432 V). */
 #define DRIVE_UV_TRIP_V 300.0
+
+/*
+ * Output phase loss: a phase below this fraction of the largest phase's rms
+ * current over a window, while that one carries more than
+ * DRIVE_PHASE_LOSS_MIN_A [A], trips the drive (the no-load magnetising
+ * current is about 10 A rms; with a phase open the healthy two carry 3 to 5
+ * times that under load).
+ */
+#define DRIVE_PHASE_LOSS_RATIO 0.1
+#define DRIVE_PHASE_LOSS_MIN_A 10.0
+#define DRIVE_PHASE_LOSS_WINDOW_S 0.1 /* [s] measuring window; two in a row trip */
 
 /* What the drive reports to the slow segment, once per slow frame. */
 typedef struct {
@@ -135,6 +150,10 @@ typedef struct {
     double m_index;          /* [-] modulation index in force */
     double f_hz;             /* [Hz] stator frequency in force */
     double e_mech_j;         /* [J] mechanical energy delivered to the shaft in the frame */
+    double i_phase_rms_a[3]; /* [A] rms current of each motor phase over the frame */
+    double e_loss_filter_j;  /* [J] filter losses in the frame (R_L, R_d; energy_audit only) */
+    double e_loss_motor_j;   /* [J] motor copper losses in the frame (energy_audit only) */
+    double limit_s;          /* [s] time the controller's torque (slip) limit acted in the frame */
     uint32_t saturations;    /* fixed-point saturation events so far (all drive models) */
     drive_trip trip;         /* the protection's state at the boundary */
 } drive_slow_meas;
@@ -167,6 +186,7 @@ typedef struct {
     int32_t i_mark[2]; /* the fast motor currents a, b at the boundary, Q3.28 of 256 A */
     int32_t v_mark[2]; /* capacitor voltages at the boundary (sampled coupling), Q3.28 */
     int64_t filt_mark[2]; /* filtered capacitor voltages at the boundary, Q3.28 << 16 */
+    int64_t loss_l, loss_d; /* energy audit: sums of i_L^2, i_d^2 over phases and steps, A^2 2^16 */
     uint32_t sat;      /* the fast models' saturation count at the boundary */
 } drive_frame_sums;
 
@@ -182,8 +202,11 @@ typedef struct {
 
 /* The slow frame's raw sums, handed from the motor task to the background. */
 typedef struct {
-    int64_t v_dc, v_dc_sq, w, te, i_sq, p_mech;
+    int64_t v_dc, v_dc_sq, w, te, i_sq[3], p_mech;
+    int64_t loss_l, loss_d;    /* the frames' loss sums (energy audit) */
+    double e_loss_motor_j;     /* [J] motor copper losses (energy audit) */
     uint32_t fast_n, medium_n;
+    uint32_t limit_n;          /* controller frames with the torque (slip) limit acting */
     q31_t w_filt, w_end;       /* filtered and final shaft speed, Q31 of 512 rad/s */
     int32_t v_dc_end;          /* Q3.28 of 1024 V */
     drive_control_out_q cmd;   /* the command in force at the boundary */
@@ -248,10 +271,12 @@ typedef struct {
     drive_faults fault, fault_next;
     bool fault_new;
     int32_t neg_k_c_next;       /* the DC-link coefficient for fault_next */
+    induction_motor_drag_q load_next; /* the motor's drag rows for fault_next */
     q31_t i_offset, i_offset_next; /* the current-sensor offset, Q31 of 256 A */
     int32_t uv_q28;             /* DRIVE_UV_TRIP_V, Q3.28 of 1024 V */
     power_stage_params ps_params; /* the stage's parameters, the capacitance as faulted */
     uint8_t trip;               /* drive_trip: written by the fast step only */
+    uint8_t trip_req;           /* a trip the background requested, applied at a slow boundary */
     bool uv_req;                /* the motor task saw an under-voltage (latched next) */
     bool plain_ok;              /* the configuration allows the real-time path */
 } drive_segment;
@@ -264,6 +289,7 @@ typedef struct {
     float i_mark[2];  /* [A] fast motor currents at the boundary */
     float v_mark[2];  /* [V] capacitor voltages at the boundary */
     float filt_mark[2]; /* [V] filtered capacitor voltages at the boundary */
+    float loss_l, loss_d; /* [A^2] energy audit: sums of i_L^2, i_d^2 over phases and steps */
     uint32_t sat;     /* the fast models' saturation count at the boundary */
 } drive_frame_sums;
 
@@ -278,8 +304,11 @@ typedef struct {
 
 typedef struct {
     /* In double: one slow frame holds up to 50000 fast steps. */
-    double v_dc, v_dc_sq, w, te, i_sq, p_mech;
+    double v_dc, v_dc_sq, w, te, i_sq[3], p_mech;
+    double loss_l, loss_d;     /* [A^2] the frames' loss sums (energy audit) */
+    double e_loss_motor_j;     /* [J] motor copper losses (energy audit) */
     uint32_t fast_n, medium_n;
+    uint32_t limit_n;          /* controller frames with the torque (slip) limit acting */
     float w_filt, w_end;       /* [rad/s] */
     float v_dc_end;            /* [V] */
     drive_control_out_f32 cmd;
@@ -332,9 +361,11 @@ typedef struct {
     drive_faults fault, fault_next;
     bool fault_new;
     float neg_k_c_next;         /* [ohm] the DC-link coefficient for fault_next */
+    induction_motor_drag_f32 load_next; /* the motor's drag for fault_next */
     float i_offset, i_offset_next; /* [A] the current-sensor offset */
     power_stage_params ps_params;
     uint8_t trip;
+    uint8_t trip_req;
     bool uv_req;
     bool plain_ok;
 } drive_segment;
@@ -392,6 +423,12 @@ void drive_battery_next(drive_segment *d, const drive_battery *next);
  * computed here, not in the fast step.
  */
 void drive_fault_request(drive_segment *d, const drive_faults *f);
+
+/*
+ * Requests a trip the slow segment's protection decided (background): the
+ * gates are blocked from the next slow boundary on, as for a fault.
+ */
+void drive_trip_request(drive_segment *d, drive_trip why);
 
 /* The fast signals now, in SI units, for the trace. */
 void drive_trace(const drive_segment *d, drive_trace_row *row);

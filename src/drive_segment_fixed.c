@@ -47,6 +47,7 @@ drive_status drive_init(drive_segment *d, const drive_config *cfg, const propell
     d->cfg = *cfg;
     d->ps_params = power_stage_params_default;
     d->fault.dc_cap_frac = 1.0;
+    d->fault.load_factor = 1.0;
     double fast_s = 1e-9 * (double)cfg->fast_ns;
     double medium_s = fast_s * (double)cfg->fast_per_medium;
     uint32_t mod_ns = cfg->fast_ns;
@@ -94,24 +95,72 @@ drive_status drive_init(drive_segment *d, const drive_config *cfg, const propell
                                  1.7320508075688772);
     d->plain_ok = (d->k32 != 0) && (cfg->inverter == DRIVE_INVERTER_SWITCHING) &&
                (cfg->down == COUPLE_ZOH || cfg->down == COUPLE_STAGGER) &&
-               (cfg->up != COUPLE_FILTER);
+               (cfg->up != COUPLE_FILTER) && !cfg->energy_audit;
     d->plain = d->plain_ok;
+    if (induction_motor_load_q(&d->motor, 1.0, &d->load_next) != INDUCTION_MOTOR_OK) {
+        return DRIVE_ERR_MODEL;
+    }
     d->uv_q28 = fp_from_f64_q31(DRIVE_UV_TRIP_V / DRIVE_BASE_VOLTAGE_V / 8.0);
     d->neg_k_c_next = d->stage->k.neg_k_c;
     return DRIVE_OK;
 }
 
 /*
- * The fast companion's current step in the general path: round((v - e)
- * k_mant / 2^k_shift), Q3.28 of 256 A, for any step length.
+ * The fast companion's current step, Q3.28 of 256 A: i + round((v - e) k32
+ * / 2^32) where k32 fits (the real-time path's form, so that both paths
+ * give the same currents), else i + round((v - e) k_mant / 2^k_shift) for
+ * any step length.
  */
-static inline int32_t fast_current_step(int32_t dv, int32_t mant, uint32_t shift) {
-    return (int32_t)fp_shr_round_i64((int64_t)dv * mant, shift);
+static inline int32_t fast_current_next(const drive_segment *d, int32_t i, int32_t dv) {
+    if (d->k32 != 0) {
+        return ps_hi_q(ps_mac_q(ps_acc_q(i), dv, d->k32));
+    }
+    return i + (int32_t)fp_shr_round_i64((int64_t)dv * d->k_mant, d->k_shift);
 }
 
 /* The Q15 motor currents of the general power stage, from the Q3.28 companion. */
 static inline q15_t stage_current_q15(int32_t i) {
     return fp_sat_q15(fp_shr_round_i32(i, 13u));
+}
+
+/*
+ * An open motor phase (drive_faults) in the fast companion: the currents
+ * a, b (c = -a - b) lose their component along the open phase, as the
+ * motor's stator current does (induction_motor_open_phase_q()): phase a
+ * open gives (0, i_b + i_a / 2), b open (i_a + i_b / 2, 0), c open
+ * ((i_a - i_b) / 2, -(i_a - i_b) / 2). The sums are formed in 64 bits and
+ * saturated.
+ */
+static void open_phase_fast(int32_t i[2], uint8_t phase) {
+    if (phase == 1u) {
+        i[1] = fp_sat_q31((int64_t)i[1] + fp_shr_round_i32(i[0], 1u));
+        i[0] = 0;
+    } else if (phase == 2u) {
+        i[0] = fp_sat_q31((int64_t)i[0] + fp_shr_round_i32(i[1], 1u));
+        i[1] = 0;
+    } else {
+        i[0] = (int32_t)fp_shr_round_i64((int64_t)i[0] - i[1], 1u);
+        i[1] = -i[0];
+    }
+}
+
+/*
+ * The energy audit's fast sums: the squares of the three inductor and
+ * damping currents, each rounded to A 2^8 first (Q3.28 of 256 A is A 2^20),
+ * so that a slow frame of 50000 steps stays far below 2^63 (each square is
+ * at most 2^32 with the states clamped to +-1 per unit).
+ */
+static void audit_fast(drive_segment *d) {
+    const power_stage_q *ps = d->stage;
+    int64_t l[3], r[3];
+    for (int x = 0; x < 2; x++) {
+        l[x] = fp_shr_round_i32(ps->ph[x].i_l, 12u);
+        r[x] = fp_shr_round_i32(ps->ph[x].i_d, 12u);
+    }
+    l[2] = -l[0] - l[1];
+    r[2] = -r[0] - r[1];
+    d->sums.loss_l += l[0] * l[0] + l[1] * l[1] + l[2] * l[2];
+    d->sums.loss_d += r[0] * r[0] + r[1] * r[1] + r[2] * r[2];
 }
 
 /*
@@ -154,26 +203,29 @@ static void faulted_states(drive_segment *d) {
     }
 }
 
-/* Every other configuration: the general modulators, a moving EMF, the filter coupling. */
+/*
+ * Every other configuration: the general modulators, a moving EMF, the
+ * filter coupling, faults, the energy audit. Kept out of line, so that its
+ * registers do not crowd the real-time path's in drive_fast_tick().
+ */
+static void fast_tick_general(drive_segment *d) __attribute__((noinline));
 static void fast_tick_general(drive_segment *d) {
     if (d->cfg.inverter == DRIVE_INVERTER_AVERAGED) {
         inverter_avg_step_q(&d->avg, &d->in);
     } else {
         if (d->cfg.inverter == DRIVE_INVERTER_SWITCHING) {
-            /* The real-time modulator's held states as duties: the general
-             * stage gives the fused step's results bit for bit. */
+            /* The real-time step with the states the faults leave: the
+             * real-time path's results bit for bit when there are none. */
             pwm_rt_step(&d->rt, d->s);
             faulted_states(d);
-            for (int x = 0; x < 3; x++) {
-                d->in.duty[x] = d->s[x] * PWM_DUTY_ONE_Q;
-            }
+            ps_fast_step_call_q(&d->ps, &d->in.battery, d->s, d->i_fast[0], d->i_fast[1]);
         } else {
             pwm_step_q(&d->pwm, &d->pout);
             d->in.duty[0] = d->pout.duty[0];
             d->in.duty[1] = d->pout.duty[1];
             d->in.duty[2] = d->pout.duty[2];
+            power_stage_step_q(&d->ps, &d->in);
         }
-        power_stage_step_q(&d->ps, &d->in);
     }
     const power_stage_q *ps = d->stage;
     const int32_t va = ps->ph[0].v_c;
@@ -181,8 +233,14 @@ static void fast_tick_general(drive_segment *d) {
     /* The EMF moves in the extrapolating modes (e_step is zero otherwise). */
     d->e[0] += d->e_step[0];
     d->e[1] += d->e_step[1];
-    d->i_fast[0] += fast_current_step(va - d->e[0], d->k_mant, d->k_shift);
-    d->i_fast[1] += fast_current_step(vb - d->e[1], d->k_mant, d->k_shift);
+    d->i_fast[0] = fast_current_next(d, d->i_fast[0], va - d->e[0]);
+    d->i_fast[1] = fast_current_next(d, d->i_fast[1], vb - d->e[1]);
+    if (d->fault.phase_open != 0u) {
+        open_phase_fast(d->i_fast, d->fault.phase_open);
+    }
+    if (d->cfg.energy_audit) {
+        audit_fast(d);
+    }
     d->in.i_motor[0] = stage_current_q15(d->i_fast[0]);
     d->in.i_motor[1] = stage_current_q15(d->i_fast[1]);
     d->sums.v_cap[0] += va;
@@ -207,11 +265,23 @@ static void faults_apply(drive_segment *d) {
     d->fault = d->fault_next;
     d->stage->k.neg_k_c = d->neg_k_c_next;
     d->i_offset = d->i_offset_next;
+    induction_motor_set_load_q(&d->motor, &d->load_next);
     if (d->fault.leg_short != 0u && d->trip == (uint8_t)DRIVE_TRIP_NONE) {
         d->trip = (uint8_t)DRIVE_TRIP_LEG_SHORT;
     }
-    d->plain = d->plain_ok && d->fault.switch_open == 0u && d->trip == (uint8_t)DRIVE_TRIP_NONE;
     d->fault_new = false;
+}
+
+/* What the slow boundary changes besides the battery (fast context). */
+static void slow_boundary_apply(drive_segment *d) {
+    if (d->fault_new) {
+        faults_apply(d);
+    }
+    if (d->trip_req != (uint8_t)DRIVE_TRIP_NONE && d->trip == (uint8_t)DRIVE_TRIP_NONE) {
+        d->trip = d->trip_req;
+    }
+    d->plain = d->plain_ok && d->fault.switch_open == 0u && d->fault.phase_open == 0u &&
+               d->trip == (uint8_t)DRIVE_TRIP_NONE;
 }
 
 void drive_medium_latch(drive_segment *d) {
@@ -246,9 +316,7 @@ void drive_medium_publish(drive_segment *d, bool slow_boundary) {
             d->bat_in_force = d->bat_next;
             d->battery_new = false;
         }
-        if (d->fault_new) {
-            faults_apply(d);
-        }
+        slow_boundary_apply(d);
     }
     drive_frame_sums *m = &d->medium_in;
     m->v_cap[0] = d->sums.v_cap[0];
@@ -263,6 +331,12 @@ void drive_medium_publish(drive_segment *d, bool slow_boundary) {
         m->filt_mark[1] = d->filt[1];
     }
     m->sat = d->stage->sat_count;
+    if (d->cfg.energy_audit) {
+        m->loss_l = d->sums.loss_l;
+        m->loss_d = d->sums.loss_d;
+        d->sums.loss_l = 0;
+        d->sums.loss_d = 0;
+    }
     d->sums.v_cap[0] = 0;
     d->sums.v_cap[1] = 0;
     d->sums.v_dc = 0;
@@ -301,6 +375,21 @@ static void emf_update(drive_segment *d, const q31_t v_mean[2], const q31_t i_en
     }
 }
 
+/*
+ * The energy audit's motor copper losses over one step [J], in double from
+ * the observed state (the audit is a desk tool): (3/2) h (R_s |i_s|^2 +
+ * R_r |i_r|^2) with the alpha-beta currents at the step's end. Out of
+ * line: its observation stays off the motor task's frame when unused.
+ */
+static double motor_loss_j(const induction_motor_q *m) __attribute__((noinline));
+static double motor_loss_j(const induction_motor_q *m) {
+    induction_motor_obs o;
+    induction_motor_observe_q(m, &o);
+    const double is2 = o.i_s[0] * o.i_s[0] + o.i_s[1] * o.i_s[1];
+    const double ir2 = o.i_r[0] * o.i_r[0] + o.i_r[1] * o.i_r[1];
+    return 1.5 * m->c.h_s * (m->c.rs_ohm * is2 + m->c.rr_ohm * ir2);
+}
+
 /* The slow frame's sums, one motor frame at a time. */
 static void slow_sums_add(drive_segment *d, const drive_frame_sums *s, const q31_t i_end[2]) {
     drive_slow_sums *w = &d->slow;
@@ -315,7 +404,14 @@ static void slow_sums_add(drive_segment *d, const drive_frame_sums *s, const q31
     w->te += d->mout.te;
     q15_t i15[3] = {fp_narrow_q15(i_end[0]), fp_narrow_q15(i_end[1]),
                     fp_narrow_q15(d->mout.i_c)};
-    w->i_sq += (int64_t)i15[0] * i15[0] + (int64_t)i15[1] * i15[1] + (int64_t)i15[2] * i15[2];
+    for (int x = 0; x < 3; x++) {
+        w->i_sq[x] += (int64_t)i15[x] * i15[x];
+    }
+    if (d->cfg.energy_audit) {
+        w->loss_l += s->loss_l;
+        w->loss_d += s->loss_d;
+        w->e_loss_motor_j += motor_loss_j(&d->motor);
+    }
     w->p_mech += fp_shr_round_i64((int64_t)d->mout.te * (int64_t)d->mout.w, 31u);
     w->medium_n++;
     if (d->cfg.up == COUPLE_FILTER) {
@@ -342,6 +438,9 @@ void drive_medium_task(drive_segment *d, bool control_due, bool slow_boundary) {
     }
     min.v_c = fp_sat_q31(-(int64_t)min.v_a - (int64_t)min.v_b);
     induction_motor_step_q(&d->motor, &min, &d->mout);
+    if (d->fault.phase_open != 0u) {
+        induction_motor_open_phase_q(&d->motor, d->fault.phase_open - 1u, &d->mout);
+    }
     q31_t i_end[2] = {d->mout.i_a, d->mout.i_b};
     q31_t v_mean[2] = {min.v_a, min.v_b};
     emf_update(d, v_mean, i_end);
@@ -359,6 +458,9 @@ void drive_medium_task(drive_segment *d, bool control_due, bool slow_boundary) {
             d->ctl_done = false;
             d->out.cmd = d->cmd;
             d->out.cmd_new = true;
+        }
+        if ((d->cmd.flags & DRIVE_CONTROL_FLAG_SLIP_LIMIT) != 0u) {
+            d->slow.limit_n++;
         }
         d->ctl_in.speed_cmd = d->speed_cmd;
         d->ctl_in.w = d->mout.w;
@@ -414,8 +516,19 @@ void drive_slow_measure(const drive_segment *d, drive_slow_meas *meas) {
                                                        : w_now;
     meas->shaft_end_radps = w_now;
     meas->te_nm = (double)w->te / nm / Q31_ONE * DRIVE_BASE_TORQUE_NM;
-    double i_sq = (double)w->i_sq / nm / 3.0 / (32768.0 * 32768.0);
+    double i_sq = 0.0;
+    for (int x = 0; x < 3; x++) {
+        double sq = (double)w->i_sq[x] / nm / (32768.0 * 32768.0);
+        meas->i_phase_rms_a[x] = math_sqrt_f64(sq) * DRIVE_BASE_CURRENT_A;
+        i_sq += sq / 3.0;
+    }
     meas->i_rms_a = math_sqrt_f64(i_sq) * DRIVE_BASE_CURRENT_A;
+    /* The audit's sums are of A^2 2^16 per fast step. */
+    double fast_s = 1e-9 * (double)d->cfg.fast_ns;
+    meas->e_loss_filter_j = (d->ps_params.r_l_ohm * (double)w->loss_l +
+                             d->ps_params.r_d_ohm * (double)w->loss_d) / 65536.0 * fast_s;
+    meas->e_loss_motor_j = w->e_loss_motor_j;
+    meas->limit_s = (double)w->limit_n * medium_s * (double)d->cfg.medium_per_control;
     meas->v_dc_v = (double)w->v_dc_end / Q28_ONE * DRIVE_BASE_VOLTAGE_V;
     meas->m_index = (double)w->cmd.m / 32768.0;
     meas->f_hz = (double)w->cmd.freq / Q31_ONE * DRIVE_BASE_FREQ_HZ;
@@ -427,16 +540,26 @@ void drive_slow_measure(const drive_segment *d, drive_slow_meas *meas) {
 
 void drive_fault_request(drive_segment *d, const drive_faults *f) {
     power_stage_q scratch;
+    power_stage_params faulted = d->ps_params;
     d->fault_next = *f;
-    d->ps_params.c_dc_f = power_stage_params_default.c_dc_f * f->dc_cap_frac;
-    /* The stage's set-up forms the DC-link coefficient for the new capacitance. */
-    if (power_stage_init_q(&scratch, &d->ps_params, d->stage->step_ns, 600.0) == PS_OK) {
+    faulted.c_dc_f = power_stage_params_default.c_dc_f * f->dc_cap_frac;
+    /* The stage's set-up forms the DC-link coefficient for the new capacitance;
+     * a capacitance it refuses leaves the one in force. */
+    if (power_stage_init_q(&scratch, &faulted, d->stage->step_ns, 600.0) == PS_OK) {
+        d->ps_params.c_dc_f = faulted.c_dc_f;
         d->neg_k_c_next = scratch.k.neg_k_c;
     } else {
         d->neg_k_c_next = d->stage->k.neg_k_c;
     }
     d->i_offset_next = fp_from_f64_q31(f->current_offset_a / DRIVE_BASE_CURRENT_A);
+    if (induction_motor_load_q(&d->motor, f->load_factor, &d->load_next) != INDUCTION_MOTOR_OK) {
+        (void)induction_motor_load_q(&d->motor, 1.0, &d->load_next);
+    }
     d->fault_new = true;
+}
+
+void drive_trip_request(drive_segment *d, drive_trip why) {
+    d->trip_req = (uint8_t)why;
 }
 
 void drive_battery_next(drive_segment *d, const drive_battery *next) {

@@ -24,6 +24,7 @@ drive_status drive_init(drive_segment *d, const drive_config *cfg, const propell
     d->cfg = *cfg;
     d->ps_params = power_stage_params_default;
     d->fault.dc_cap_frac = 1.0;
+    d->fault.load_factor = 1.0;
     double fast_s = 1e-9 * (double)cfg->fast_ns;
     double medium_s = fast_s * (double)cfg->fast_per_medium;
     uint32_t mod_ns = cfg->fast_ns;
@@ -66,8 +67,11 @@ drive_status drive_init(drive_segment *d, const drive_config *cfg, const propell
     d->k_deriv = (float)(6.283185307179586 * fast_s / 1.7320508075688772);
     d->plain_ok = (cfg->inverter == DRIVE_INVERTER_SWITCHING) &&
                (cfg->down == COUPLE_ZOH || cfg->down == COUPLE_STAGGER) &&
-               (cfg->up != COUPLE_FILTER);
+               (cfg->up != COUPLE_FILTER) && !cfg->energy_audit;
     d->plain = d->plain_ok;
+    if (induction_motor_load_f32(&d->motor, 1.0, &d->load_next) != INDUCTION_MOTOR_OK) {
+        return DRIVE_ERR_MODEL;
+    }
     d->neg_k_c_next = d->stage->k.neg_k_c;
     return DRIVE_OK;
 }
@@ -86,6 +90,29 @@ static inline void fast_tick_plain(drive_segment *d) {
     d->sums.v_dc += ps->v_dc;
 }
 
+/* An open motor phase in the fast companion (as in drive_segment_fixed.c). */
+static void open_phase_fast(float i[2], uint8_t phase) {
+    if (phase == 1u) {
+        i[1] += 0.5f * i[0];
+        i[0] = 0.0f;
+    } else if (phase == 2u) {
+        i[0] += 0.5f * i[1];
+        i[1] = 0.0f;
+    } else {
+        i[0] = 0.5f * (i[0] - i[1]);
+        i[1] = -i[0];
+    }
+}
+
+/* The energy audit's fast sums [A^2] (as in drive_segment_fixed.c). */
+static void audit_fast(drive_segment *d) {
+    const power_stage_f32 *ps = d->stage;
+    const float l2 = -ps->ph[0].i_l - ps->ph[1].i_l;
+    const float r2 = -ps->ph[0].i_d - ps->ph[1].i_d;
+    d->sums.loss_l += ps->ph[0].i_l * ps->ph[0].i_l + ps->ph[1].i_l * ps->ph[1].i_l + l2 * l2;
+    d->sums.loss_d += ps->ph[0].i_d * ps->ph[0].i_d + ps->ph[1].i_d * ps->ph[1].i_d + r2 * r2;
+}
+
 /* The leg states the faults leave (as in drive_segment_fixed.c). */
 static void faulted_states(drive_segment *d) {
     const float i_l[3] = {d->ps.ph[0].i_l, d->ps.ph[1].i_l, -d->ps.ph[0].i_l - d->ps.ph[1].i_l};
@@ -100,25 +127,28 @@ static void faulted_states(drive_segment *d) {
     }
 }
 
-/* Every other configuration: the general modulators, a moving EMF, the filter coupling. */
+/*
+ * Every other configuration: the general modulators, a moving EMF, the
+ * filter coupling, faults, the energy audit. Kept out of line, so that its
+ * registers do not crowd the real-time path's in drive_fast_tick().
+ */
+static void fast_tick_general(drive_segment *d) __attribute__((noinline));
 static void fast_tick_general(drive_segment *d) {
     if (d->cfg.inverter == DRIVE_INVERTER_AVERAGED) {
         inverter_avg_step_f32(&d->avg, &d->in);
     } else {
         if (d->cfg.inverter == DRIVE_INVERTER_SWITCHING) {
-            /* The held states as duties: the fused step's results bit for bit. */
+            /* As in drive_segment_fixed.c: the real-time step with the faults' states. */
             pwm_rt_step(&d->rt, d->s);
             faulted_states(d);
-            for (int x = 0; x < 3; x++) {
-                d->in.duty[x] = (float)d->s[x];
-            }
+            ps_fast_step_call_f32(&d->ps, &d->in.battery, d->s, d->i_fast[0], d->i_fast[1]);
         } else {
             pwm_step_f32(&d->pwm, &d->pout);
             d->in.duty[0] = d->pout.duty[0];
             d->in.duty[1] = d->pout.duty[1];
             d->in.duty[2] = d->pout.duty[2];
+            power_stage_step_f32(&d->ps, &d->in);
         }
-        power_stage_step_f32(&d->ps, &d->in);
     }
     const power_stage_f32 *ps = d->stage;
     const float va = ps->ph[0].v_c;
@@ -127,6 +157,12 @@ static void fast_tick_general(drive_segment *d) {
     d->e[1] += d->e_step[1];
     d->i_fast[0] += (va - d->e[0]) * d->k_l;
     d->i_fast[1] += (vb - d->e[1]) * d->k_l;
+    if (d->fault.phase_open != 0u) {
+        open_phase_fast(d->i_fast, d->fault.phase_open);
+    }
+    if (d->cfg.energy_audit) {
+        audit_fast(d);
+    }
     d->in.i_motor_a[0] = d->i_fast[0];
     d->in.i_motor_a[1] = d->i_fast[1];
     d->sums.v_cap[0] += va;
@@ -150,11 +186,23 @@ static void faults_apply(drive_segment *d) {
     d->fault = d->fault_next;
     d->stage->k.neg_k_c = d->neg_k_c_next;
     d->i_offset = d->i_offset_next;
+    induction_motor_set_load_f32(&d->motor, &d->load_next);
     if (d->fault.leg_short != 0u && d->trip == (uint8_t)DRIVE_TRIP_NONE) {
         d->trip = (uint8_t)DRIVE_TRIP_LEG_SHORT;
     }
-    d->plain = d->plain_ok && d->fault.switch_open == 0u && d->trip == (uint8_t)DRIVE_TRIP_NONE;
     d->fault_new = false;
+}
+
+/* What the slow boundary changes besides the battery (as in drive_segment_fixed.c). */
+static void slow_boundary_apply(drive_segment *d) {
+    if (d->fault_new) {
+        faults_apply(d);
+    }
+    if (d->trip_req != (uint8_t)DRIVE_TRIP_NONE && d->trip == (uint8_t)DRIVE_TRIP_NONE) {
+        d->trip = d->trip_req;
+    }
+    d->plain = d->plain_ok && d->fault.switch_open == 0u && d->fault.phase_open == 0u &&
+               d->trip == (uint8_t)DRIVE_TRIP_NONE;
 }
 
 void drive_medium_latch(drive_segment *d) {
@@ -188,9 +236,7 @@ void drive_medium_publish(drive_segment *d, bool slow_boundary) {
             d->bat_in_force = d->bat_next;
             d->battery_new = false;
         }
-        if (d->fault_new) {
-            faults_apply(d);
-        }
+        slow_boundary_apply(d);
     }
     drive_frame_sums *m = &d->medium_in;
     m->v_cap[0] = d->sums.v_cap[0];
@@ -205,6 +251,12 @@ void drive_medium_publish(drive_segment *d, bool slow_boundary) {
         m->filt_mark[1] = d->filt[1];
     }
     m->sat = d->stage->sat_count;
+    if (d->cfg.energy_audit) {
+        m->loss_l = d->sums.loss_l;
+        m->loss_d = d->sums.loss_d;
+        d->sums.loss_l = 0.0f;
+        d->sums.loss_d = 0.0f;
+    }
     d->sums.v_cap[0] = 0.0f;
     d->sums.v_cap[1] = 0.0f;
     d->sums.v_dc = 0.0f;
@@ -234,6 +286,16 @@ static void emf_update(drive_segment *d, const float v_mean[2], const float i_en
     }
 }
 
+/* The energy audit's motor copper losses over one step [J] (as in drive_segment_fixed.c). */
+static double motor_loss_j(const induction_motor_f32 *m) __attribute__((noinline));
+static double motor_loss_j(const induction_motor_f32 *m) {
+    induction_motor_obs o;
+    induction_motor_observe_f32(m, &o);
+    const double is2 = o.i_s[0] * o.i_s[0] + o.i_s[1] * o.i_s[1];
+    const double ir2 = o.i_r[0] * o.i_r[0] + o.i_r[1] * o.i_r[1];
+    return 1.5 * m->c.h_s * (m->c.rs_ohm * is2 + m->c.rr_ohm * ir2);
+}
+
 static void slow_sums_add(drive_segment *d, const drive_frame_sums *s, const float i_end[2]) {
     drive_slow_sums *w = &d->slow;
     float n = (float)d->cfg.fast_per_medium;
@@ -243,7 +305,16 @@ static void slow_sums_add(drive_segment *d, const drive_frame_sums *s, const flo
     w->fast_n += d->cfg.fast_per_medium;
     w->w += (double)d->mout.w_radps;
     w->te += (double)d->mout.te_nm;
-    w->i_sq += (double)(i_end[0] * i_end[0] + i_end[1] * i_end[1] + d->mout.i_c * d->mout.i_c);
+    const float i3[3] = {i_end[0], i_end[1], d->mout.i_c};
+    for (int x = 0; x < 3; x++) {
+        const float sq = i3[x] * i3[x];
+        w->i_sq[x] += (double)sq;
+    }
+    if (d->cfg.energy_audit) {
+        w->loss_l += (double)s->loss_l;
+        w->loss_d += (double)s->loss_d;
+        w->e_loss_motor_j += motor_loss_j(&d->motor);
+    }
     w->p_mech += (double)(d->mout.te_nm * d->mout.w_radps);
     w->medium_n++;
     if (d->cfg.up == COUPLE_FILTER) {
@@ -268,6 +339,9 @@ void drive_medium_task(drive_segment *d, bool control_due, bool slow_boundary) {
     }
     min.v_c = -min.v_a - min.v_b;
     induction_motor_step_f32(&d->motor, &min, &d->mout);
+    if (d->fault.phase_open != 0u) {
+        induction_motor_open_phase_f32(&d->motor, d->fault.phase_open - 1u, &d->mout);
+    }
     float i_end[2] = {d->mout.i_a, d->mout.i_b};
     float v_mean[2] = {min.v_a, min.v_b};
     emf_update(d, v_mean, i_end);
@@ -282,6 +356,9 @@ void drive_medium_task(drive_segment *d, bool control_due, bool slow_boundary) {
             d->ctl_done = false;
             d->out.cmd = d->cmd;
             d->out.cmd_new = true;
+        }
+        if ((d->cmd.flags & DRIVE_CONTROL_FLAG_SLIP_LIMIT) != 0u) {
+            d->slow.limit_n++;
         }
         d->ctl_in.speed_cmd_radps = d->speed_cmd;
         d->ctl_in.w_radps = d->mout.w_radps;
@@ -328,7 +405,17 @@ void drive_slow_measure(const drive_segment *d, drive_slow_meas *meas) {
                                                        : (double)w->w_end;
     meas->shaft_end_radps = (double)w->w_end;
     meas->te_nm = w->te / nm;
-    meas->i_rms_a = math_sqrt_f64(w->i_sq / nm / 3.0);
+    double i_sq = 0.0;
+    for (int x = 0; x < 3; x++) {
+        meas->i_phase_rms_a[x] = math_sqrt_f64(w->i_sq[x] / nm);
+        i_sq += w->i_sq[x] / nm / 3.0;
+    }
+    meas->i_rms_a = math_sqrt_f64(i_sq);
+    double fast_s = 1e-9 * (double)d->cfg.fast_ns;
+    meas->e_loss_filter_j =
+        (d->ps_params.r_l_ohm * w->loss_l + d->ps_params.r_d_ohm * w->loss_d) * fast_s;
+    meas->e_loss_motor_j = w->e_loss_motor_j;
+    meas->limit_s = (double)w->limit_n * medium_s * (double)d->cfg.medium_per_control;
     meas->v_dc_v = (double)w->v_dc_end;
     meas->m_index = (double)w->cmd.m;
     meas->f_hz = (double)w->cmd.freq_hz;
@@ -339,15 +426,26 @@ void drive_slow_measure(const drive_segment *d, drive_slow_meas *meas) {
 
 void drive_fault_request(drive_segment *d, const drive_faults *f) {
     power_stage_f32 scratch;
+    power_stage_params faulted = d->ps_params;
     d->fault_next = *f;
-    d->ps_params.c_dc_f = power_stage_params_default.c_dc_f * f->dc_cap_frac;
-    if (power_stage_init_f32(&scratch, &d->ps_params, d->stage->step_ns, 600.0) == PS_OK) {
+    faulted.c_dc_f = power_stage_params_default.c_dc_f * f->dc_cap_frac;
+    /* The stage's set-up forms the DC-link coefficient for the new capacitance;
+     * a capacitance it refuses leaves the one in force. */
+    if (power_stage_init_f32(&scratch, &faulted, d->stage->step_ns, 600.0) == PS_OK) {
+        d->ps_params.c_dc_f = faulted.c_dc_f;
         d->neg_k_c_next = scratch.k.neg_k_c;
     } else {
         d->neg_k_c_next = d->stage->k.neg_k_c;
     }
     d->i_offset_next = (float)f->current_offset_a;
+    if (induction_motor_load_f32(&d->motor, f->load_factor, &d->load_next) != INDUCTION_MOTOR_OK) {
+        (void)induction_motor_load_f32(&d->motor, 1.0, &d->load_next);
+    }
     d->fault_new = true;
+}
+
+void drive_trip_request(drive_segment *d, drive_trip why) {
+    d->trip_req = (uint8_t)why;
 }
 
 void drive_battery_next(drive_segment *d, const drive_battery *next) {

@@ -45,6 +45,8 @@ static void apply_fault(exec *e, const scenario_event *ev) {
     case SCN_FAULT_LEG_SHORT: e->dfault.leg_short = (uint8_t)ev->value; break;
     case SCN_FAULT_DC_CAP: e->dfault.dc_cap_frac = ev->value; break;
     case SCN_FAULT_CURRENT_OFFSET: e->dfault.current_offset_a = ev->value; break;
+    case SCN_FAULT_PHASE_OPEN: e->dfault.phase_open = (uint8_t)ev->value; break;
+    case SCN_FAULT_PROP_FOULING: e->dfault.load_factor = ev->value; break;
     case SCN_FAULT_BATTERY_CUTOFF: e->battery_cut = true; break;
     case SCN_FAULT_FIN_JAM: {
         int k = (int)ev->value - 1;
@@ -190,6 +192,7 @@ static exec_status init_drive(exec *e) {
     dc.medium_per_slow = c->medium_per_slow;
     dc.averaged_substeps = (c->fast_ns >= 8000u) ? 4u : 1u;
     dc.v_dc0_v = battery_voltage_f64(&e->bat, 0.0);
+    dc.energy_audit = c->energy_audit;
     if (drive_init(&e->drive, &dc, &e->prop) != DRIVE_OK) {
         return EXEC_ERR_MODEL;
     }
@@ -211,6 +214,7 @@ exec_status exec_init(exec *e, const exec_config *cfg, const scenario *scn) {
     *e = (exec){0};
     e->cfg = *cfg;
     e->dfault.dc_cap_frac = 1.0;
+    e->dfault.load_factor = 1.0;
     e->trip_t_s = -1.0;
     e->scn = scn;
     double duration = (cfg->duration_s > 0.0) ? cfg->duration_s : scn->duration_s;
@@ -355,6 +359,40 @@ void exec_control_tick(exec *e) {
 
 bool exec_slow_pending(const exec *e) { return e->slow_pending; }
 
+/*
+ * The drive's output phase-loss protection, in the background on the slow
+ * frames' measurements, over windows of DRIVE_PHASE_LOSS_WINDOW_S (several
+ * electrical periods whatever the slow frame): one phase's rms current
+ * below DRIVE_PHASE_LOSS_RATIO of the largest, while that one carries more
+ * than DRIVE_PHASE_LOSS_MIN_A, in two windows running trips the drive at
+ * the next slow boundary.
+ */
+static void phase_loss_check(exec *e, const drive_slow_meas *m) {
+    for (int x = 0; x < 3; x++) {
+        e->pl_sq[x] += m->i_phase_rms_a[x] * m->i_phase_rms_a[x] * e->slow_s;
+    }
+    e->pl_t += e->slow_s;
+    if (e->pl_t < DRIVE_PHASE_LOSS_WINDOW_S * (1.0 - 1e-9)) {
+        return;
+    }
+    double lo = e->pl_sq[0];
+    double hi = lo;
+    for (int x = 1; x < 3; x++) {
+        lo = (e->pl_sq[x] < lo) ? e->pl_sq[x] : lo;
+        hi = (e->pl_sq[x] > hi) ? e->pl_sq[x] : hi;
+    }
+    /* On mean squares: the thresholds squared. */
+    const double r = DRIVE_PHASE_LOSS_RATIO;
+    const double i_min = DRIVE_PHASE_LOSS_MIN_A;
+    bool lost = hi > i_min * i_min * e->pl_t && lo < r * r * hi;
+    e->pl_windows = lost ? e->pl_windows + 1u : 0u;
+    e->pl_sq[0] = e->pl_sq[1] = e->pl_sq[2] = 0.0;
+    e->pl_t = 0.0;
+    if (e->pl_windows >= 2u) {
+        drive_trip_request(&e->drive, DRIVE_TRIP_PHASE_LOSS);
+    }
+}
+
 /* The battery's frame from the bus voltage the drive measured (i = G v - b). */
 static void battery_frame(exec *e) {
     drive_slow_measure(&e->drive, &e->meas);
@@ -373,6 +411,9 @@ static void battery_frame(exec *e) {
     battery_step_f64(&e->bat, &bm);
     e->count.e_batt_j -= bm.p_avg_w * e->slow_s;
     e->count.e_mech_j += m->e_mech_j;
+    e->count.e_loss_filter_j += m->e_loss_filter_j;
+    e->count.e_loss_motor_j += m->e_loss_motor_j;
+    e->count.limit_s += m->limit_s;
     e->count.saturations = m->saturations;
     e->acc_i_batt -= bm.i_avg_a;
     e->acc_te += m->te_nm;
@@ -386,6 +427,7 @@ static void battery_frame(exec *e) {
     e->bat_next.g_s = e->battery_cut ? 0.0 : bc.g_s;
     e->bat_next.b_a = e->battery_cut ? 0.0 : bc.b_a;
     drive_battery_next(&e->drive, &e->bat_next);
+    phase_loss_check(e, m);
     if (m->trip != DRIVE_TRIP_NONE && e->trip_t_s < 0.0) {
         e->trip_t_s = (double)e->frame * e->slow_s;
     }

@@ -56,6 +56,7 @@ typedef struct {
     coupling_down down;
     coupling_up up;
     bool single_rate;
+    bool energy_audit;     /* count the drive's losses (exec_counters; the general fast path) */
     double duration_s;     /* [s]; 0: the scenario's */
     double soc0;           /* [-] initial state of charge */
     uint32_t fast_ns;      /* [ns] fast frame (2000) */
@@ -98,6 +99,9 @@ typedef enum {
 typedef struct {
     double e_batt_j;      /* [J] energy delivered by the battery at its terminals */
     double e_mech_j;      /* [J] mechanical energy delivered to the shaft */
+    double e_loss_filter_j; /* [J] LC filter losses (energy audit only) */
+    double e_loss_motor_j;  /* [J] motor copper losses (energy audit only) */
+    double limit_s;       /* [s] time the drive's torque (slip) limit acted */
     uint64_t fast;        /* fast steps run, counted at motor-frame boundaries (exec_fast_steps) */
     uint64_t medium, control, slow; /* steps run */
     uint32_t overruns_medium, overruns_control, overruns_slow;
@@ -129,6 +133,8 @@ typedef struct {
     drive_faults dfault;
     bool drive_ready;         /* the drive is initialised (faults may be requested) */
     double trip_t_s;          /* [s] when the protection tripped (< 0: it has not) */
+    double pl_sq[3], pl_t;    /* phase-loss window: [A^2 s] per phase, [s] its length */
+    uint32_t pl_windows;      /* windows running that showed a phase loss */
     double zz_rudder, zz_psi0;
     manoeuvre man;
     /* Drive (full plant). */

@@ -17,6 +17,7 @@
 const char *const scenario_command_names[SCN_COMMAND_COUNT] = {
     "rudder", "stern", "bow_port", "bow_stbd", "n_rpm", "buoyancy",
     "switch_open", "leg_short", "dc_cap", "battery_cutoff", "fin_jam", "current_offset",
+    "phase_open", "prop_fouling",
 };
 
 /* Symbolic values of the fault commands that name a part: the k-th is k + 1. */
@@ -47,6 +48,8 @@ static const value_rule command_rules[SCN_COMMAND_COUNT] = {
     {"", false, 1.0, 1.0, on_symbols},
     {"", false, 1.0, 4.0, fin_symbols},
     {"A", false, -50.0, 50.0, NULL},
+    {"", false, 1.0, 3.0, leg_symbols},
+    {"", false, 1.0, 10.0, NULL},
 };
 
 /* Ranges of the initial states, in the order of vessel_state_names. */

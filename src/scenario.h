@@ -15,6 +15,8 @@
  *                                  battery_cutoff=on               the pack at cut-off
  *                                  fin_jam=rudder|stern|bow_port|bow_stbd
  *                                  current_offset=<A>              phase-a sensor offset
+ *                                  phase_open=a|b|c                a motor phase disconnected
+ *                                  prop_fouling=<factor>           propeller load torque x 1..10
  *   zigzag rudder=<amp> heading=<threshold> [start=<s>] [stop=<s>]
  *
  * A command holds until changed. Events apply at the first slow-frame
@@ -55,6 +57,8 @@ typedef enum {
     SCN_FAULT_BATTERY_CUTOFF, /* 1: the pack's protection opens its contactor */
     SCN_FAULT_FIN_JAM,        /* fin 1..4: rudder, stern, bow_port, bow_stbd */
     SCN_FAULT_CURRENT_OFFSET, /* [A] offset of the phase-a current sensor */
+    SCN_FAULT_PHASE_OPEN,     /* motor phase 1..3: a, b, c disconnected */
+    SCN_FAULT_PROP_FOULING,   /* [-] factor on the propeller's load torque, 1..10 */
     SCN_COMMAND_COUNT
 } scenario_command;
 

@@ -66,6 +66,8 @@ for v in linux-fixed linux-float; do
 done
 for v in linux-fixed linux-float; do
     run "host $v fault injection" pass sh tests/host/test_faults.sh "$BUILD/$v/uuvsim"
+    run "host $v soak, 600 s (make soak: 3600 s)" pass sh tests/host/test_soak.sh \
+        "$BUILD/$v/uuvsim" 600
 done
 run "host math vs libm" pass "$BUILD/tools/test_math_libm"
 run "host check_tables (exhaustive)" pass "$BUILD/tools/check_tables"

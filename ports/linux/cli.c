@@ -26,6 +26,8 @@ const char cli_usage[] =
     "                           averaged: leg duty cycles at the motor's 100 us frame;\n"
     "                           event: switching instants located inside the step\n"
     "  --single-rate            every segment at 2 us (the reference)\n"
+    "  --energy-audit           count the filter's and the motor's losses and print\n"
+    "                           the energy balance (slower: the general fast path)\n"
     "  --slow-to-fast zoh|foh|deriv|stagger\n"
     "                           how the motor's currents reach the 2 us steps\n"
     "  --fast-to-slow avg|filter|sample\n"
@@ -85,6 +87,7 @@ static const opt_spec options[] = {
     {"--slow-to-fast", OPT_CHOICE, "zoh|foh|deriv|stagger", FIELD(exec.down)},
     {"--fast-to-slow", OPT_CHOICE, "avg|filter|sample", FIELD(exec.up)},
     {"--single-rate", OPT_FLAG, NULL, FIELD(exec.single_rate)},
+    {"--energy-audit", OPT_FLAG, NULL, FIELD(exec.energy_audit)},
     {"--realtime", OPT_FLAG, NULL, FIELD(realtime)},
     {"--json", OPT_FLAG, NULL, FIELD(json)},
     {"--quiet", OPT_FLAG, NULL, FIELD(quiet)},

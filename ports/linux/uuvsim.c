@@ -70,7 +70,25 @@ static const char *const law_names[] = {"mss", "paper"};
 static const char *const inverter_names[] = {"switching", "averaged", "event"};
 static const char *const down_names[] = {"zoh", "foh", "deriv", "stagger"};
 static const char *const up_names[] = {"avg", "filter", "sample"};
-static const char *const trip_names[] = {"none", "leg short", "under-voltage"};
+static const char *const trip_names[] = {"none", "leg short", "under-voltage", "phase loss"};
+#define TRIP_NAMES (sizeof trip_names / sizeof trip_names[0])
+
+/*
+ * The energy audit (--energy-audit): the battery's energy at its terminals
+ * against the filter's and the motor's losses and the shaft's work; the
+ * residual is what no account holds (the DC link's and the windings' stored
+ * energy, the switching and coupling errors), in percent of the battery's.
+ */
+static void print_energy_balance(FILE *f_out, const exec *e) {
+    const exec_counters *c = &e->count;
+    double residual = c->e_batt_j - c->e_loss_filter_j - c->e_loss_motor_j - c->e_mech_j;
+    fprintf(f_out, "  \"energy_balance\": {\"battery_wh\": %.9g, \"filter_loss_wh\": %.9g, "
+            "\"motor_loss_wh\": %.9g, \"mechanical_wh\": %.9g, \"residual_wh\": %.9g, "
+            "\"residual_pct\": %.6g},\n",
+            c->e_batt_j / 3600.0, c->e_loss_filter_j / 3600.0, c->e_loss_motor_j / 3600.0,
+            c->e_mech_j / 3600.0, residual / 3600.0,
+            c->e_batt_j != 0.0 ? 100.0 * residual / c->e_batt_j : 0.0);
+}
 
 static void print_json(FILE *f_out, const run_result *r) {
     const exec *e = r->e;
@@ -93,6 +111,9 @@ static void print_json(FILE *f_out, const run_result *r) {
            exec_overruns(e), e->count.saturations);
     fprintf(f_out, "  \"energy_wh\": %.9g,\n  \"mechanical_energy_wh\": %.9g,\n",
            e->count.e_batt_j / 3600.0, e->count.e_mech_j / 3600.0);
+    if (e->cfg.energy_audit) {
+        print_energy_balance(f_out, e);
+    }
     fprintf(f_out, "  \"faults\": [");
     for (int k = 0; k < SCN_COMMAND_COUNT - SCN_FIRST_FAULT; k++) {
         if ((e->fault_mask & (1u << k)) != 0u) {
@@ -101,11 +122,11 @@ static void print_json(FILE *f_out, const run_result *r) {
         }
     }
     fprintf(f_out, "],\n  \"protection\": {\"tripped\": %s, \"reason\": \"%s\"",
-            f->trip != 0u ? "true" : "false", trip_names[f->trip < 3u ? f->trip : 0u]);
+            f->trip != 0u ? "true" : "false", trip_names[f->trip < TRIP_NAMES ? f->trip : 0u]);
     if (e->trip_t_s >= 0.0) {
         fprintf(f_out, ", \"at_s\": %.6g", e->trip_t_s);
     }
-    fprintf(f_out, "},\n");
+    fprintf(f_out, ", \"torque_limit_s\": %.6g},\n", e->count.limit_s);
     if (r->o->realtime) {
         fprintf(f_out, "  \"realtime_lag_max_s\": %.6g,\n  \"realtime_late_frames\": %u,\n",
                r->realtime_lag_max_s, r->realtime_late);
@@ -156,7 +177,7 @@ static void print_text(const run_result *r) {
                e->count.e_batt_j / 3600.0, e->bat.soc, f->v_dc_v);
         if (e->fault_mask != 0u || f->trip != 0u) {
             printf("faults injected: 0x%x; protection: %s\n", (unsigned)e->fault_mask,
-                   f->trip != 0u ? trip_names[f->trip < 3u ? f->trip : 0u] : "not tripped");
+                   f->trip != 0u ? trip_names[f->trip < TRIP_NAMES ? f->trip : 0u] : "not tripped");
         }
     }
     printf("final: u %.3f m/s, N %.1f m, E %.1f m, depth %.2f m, heading %.1f deg, "

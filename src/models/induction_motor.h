@@ -248,6 +248,7 @@ typedef struct {
     float psi_s[2], psi_r[2];                             /* [Wb] */
     float w, w_comp, w_prev; /* [rad/s] speed, its Kahan compensation, last speed */
     float te, t_load;        /* [N m] at the end of the last step */
+    float load_factor;       /* [-] on the propeller's torque (fouling), 1 when clean */
     bool speed_locked;
 } induction_motor_f32;
 
@@ -259,6 +260,26 @@ void induction_motor_set_speed_f32(induction_motor_f32 *m, float w_radps, bool l
 void induction_motor_step_f32(induction_motor_f32 *m, const induction_motor_in_f32 *in,
                               induction_motor_out_f32 *out);
 void induction_motor_observe_f32(const induction_motor_f32 *m, induction_motor_obs *o);
+
+/*
+ * Faults (docs/reliability.md). A fouled propeller: its load torque times
+ * factor (>= 1, finite), computed by induction_motor_load_*() in the
+ * background and put in force by induction_motor_set_load_*() at a frame
+ * boundary (a few copies). An open phase (0, 1, 2: a, b, c): right after a
+ * step, with out holding that step's outputs, the stator flux loses the
+ * component that drives current in that phase, so its current is zero and
+ * the other two carry one current in series; out is recomputed.
+ */
+typedef struct {
+    float eps_per_w; /* [1 per rad/s] the drag's linearisation, times the factor */
+    float factor;    /* [-] */
+} induction_motor_drag_f32;
+
+induction_motor_status induction_motor_load_f32(const induction_motor_f32 *m, double factor,
+                                                induction_motor_drag_f32 *l);
+void induction_motor_set_load_f32(induction_motor_f32 *m, const induction_motor_drag_f32 *l);
+void induction_motor_open_phase_f32(induction_motor_f32 *m, uint32_t phase,
+                                    induction_motor_out_f32 *out);
 
 /* ---- Integer twin (per unit, Q31) ----------------------------------------- */
 
@@ -294,6 +315,7 @@ typedef struct {
     induction_motor_row_q k_eps;  /* Q31 eps <- |speed| */
     induction_motor_row_q k_load; /* torque <- Q31 w|w| */
     induction_motor_row_q k_rpm;  /* rpm * 2^16 <- speed */
+    induction_motor_row_q k_open; /* stator flux <- stator current, 1 / a_ss (open phase) */
     q31_t psi_s[2], psi_r[2];     /* Q31 of 8 Wb */
     q31_t w, w_prev;              /* Q31 of 512 rad/s */
     q31_t te, t_load;             /* Q31 of 512 N m, end of the last step */
@@ -319,5 +341,16 @@ void induction_motor_set_speed_q(induction_motor_q *m, q31_t w, bool locked);
 void induction_motor_step_q(induction_motor_q *m, const induction_motor_in_q *in,
                             induction_motor_out_q *out);
 void induction_motor_observe_q(const induction_motor_q *m, induction_motor_obs *o);
+
+/* The faults of the float twin (above), in the integer formats; the same errors as init. */
+typedef struct {
+    induction_motor_row_q k_eps, k_load; /* the rows of the drag, times the factor */
+} induction_motor_drag_q;
+
+induction_motor_status induction_motor_load_q(const induction_motor_q *m, double factor,
+                                              induction_motor_drag_q *l);
+void induction_motor_set_load_q(induction_motor_q *m, const induction_motor_drag_q *l);
+void induction_motor_open_phase_q(induction_motor_q *m, uint32_t phase,
+                                  induction_motor_out_q *out);
 
 #endif /* UUV_INDUCTION_MOTOR_H */

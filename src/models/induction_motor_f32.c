@@ -21,7 +21,7 @@ static void im_rotation_f32(float phi, float *c1, float *s) {
 }
 
 static float im_load_f32(const induction_motor_f32 *m, float w) {
-    return (m->prop != NULL) ? -propeller_drag_torque_f32(m->prop, w) : 0.0f;
+    return (m->prop != NULL) ? -m->load_factor * propeller_drag_torque_f32(m->prop, w) : 0.0f;
 }
 
 induction_motor_status induction_motor_init_f32(induction_motor_f32 *m,
@@ -52,6 +52,7 @@ induction_motor_status induction_motor_init_f32(induction_motor_f32 *m,
     m->dw_per_t = (float)c.dw_per_t;
     m->eps_per_w = (float)c.eps_per_w;
     m->prop = prop;
+    m->load_factor = 1.0f;
     induction_motor_reset_f32(m);
     return INDUCTION_MOTOR_OK;
 }
@@ -92,6 +93,20 @@ static void im_mechanics_f32(induction_motor_f32 *m, float te_new) {
     m->t_load = im_load_f32(m, m->w);
 }
 
+static void im_outputs_f32(const induction_motor_f32 *m, induction_motor_out_f32 *out) {
+    const float i_al = m->a_ss * m->psi_s[0] - m->a_sr * m->psi_r[0];
+    const float i_be = m->a_ss * m->psi_s[1] - m->a_sr * m->psi_r[1];
+    out->i_a = i_al;
+    out->i_b = -0.5f * i_al + IM_HALF_SQRT3_F32 * i_be;
+    out->i_c = -out->i_a - out->i_b;
+    out->te_nm = m->te;
+    out->t_load_nm = m->t_load;
+    out->w_radps = m->w;
+    out->n_rpm = m->w * IM_RPM_PER_RADPS_F32;
+    out->psi_s_alpha_wb = m->psi_s[0];
+    out->psi_s_beta_wb = m->psi_s[1];
+}
+
 void induction_motor_step_f32(induction_motor_f32 *m, const induction_motor_in_f32 *in,
                               induction_motor_out_f32 *out) {
     const float v0 = (in->v_a + in->v_b + in->v_c) * (1.0f / 3.0f);
@@ -111,17 +126,7 @@ void induction_motor_step_f32(induction_motor_f32 *m, const induction_motor_in_f
     }
     im_mechanics_f32(m, m->te_per_cross * (m->psi_s[1] * m->psi_r[0] - m->psi_s[0] * m->psi_r[1]));
 
-    const float i_al = m->a_ss * m->psi_s[0] - m->a_sr * m->psi_r[0];
-    const float i_be = m->a_ss * m->psi_s[1] - m->a_sr * m->psi_r[1];
-    out->i_a = i_al;
-    out->i_b = -0.5f * i_al + IM_HALF_SQRT3_F32 * i_be;
-    out->i_c = -out->i_a - out->i_b;
-    out->te_nm = m->te;
-    out->t_load_nm = m->t_load;
-    out->w_radps = m->w;
-    out->n_rpm = m->w * IM_RPM_PER_RADPS_F32;
-    out->psi_s_alpha_wb = m->psi_s[0];
-    out->psi_s_beta_wb = m->psi_s[1];
+    im_outputs_f32(m, out);
 }
 
 void induction_motor_observe_f32(const induction_motor_f32 *m, induction_motor_obs *o) {
@@ -135,4 +140,38 @@ void induction_motor_observe_f32(const induction_motor_f32 *m, induction_motor_o
     o->w_radps = (double)m->w;
     o->te_nm = (double)m->te;
     o->t_load_nm = (double)m->t_load;
+}
+
+induction_motor_status induction_motor_load_f32(const induction_motor_f32 *m, double factor,
+                                                induction_motor_drag_f32 *l) {
+    if (m == NULL || l == NULL) {
+        return INDUCTION_MOTOR_ERR_NULL;
+    }
+    if (!(factor >= 1.0 && factor <= 1e3)) {
+        return INDUCTION_MOTOR_ERR_PARAM;
+    }
+    l->eps_per_w = (float)(m->c.eps_per_w * factor);
+    l->factor = (float)factor;
+    return INDUCTION_MOTOR_OK;
+}
+
+void induction_motor_set_load_f32(induction_motor_f32 *m, const induction_motor_drag_f32 *l) {
+    m->eps_per_w = l->eps_per_w;
+    m->load_factor = l->factor;
+}
+
+/* The open phase of induction_motor.h: the stator flux moves by -u i_x / a_ss. */
+void induction_motor_open_phase_f32(induction_motor_f32 *m, uint32_t phase,
+                                    induction_motor_out_f32 *out) {
+    const float i_x = (phase == 0u) ? out->i_a : (phase == 1u) ? out->i_b : out->i_c;
+    const float d = i_x / m->a_ss;
+    float d_al = d;
+    float d_be = 0.0f;
+    if (phase != 0u) {
+        d_al = -0.5f * d;
+        d_be = (phase == 1u) ? IM_HALF_SQRT3_F32 * d : -IM_HALF_SQRT3_F32 * d;
+    }
+    m->psi_s[0] -= d_al;
+    m->psi_s[1] -= d_be;
+    im_outputs_f32(m, out);
 }

@@ -74,7 +74,33 @@ static bool im_rows_q(induction_motor_q *m) {
     ok = ok && im_row_from_f64(&m->k_eps, c->eps_per_w * IM_Q_W * 2147483648.0, 0.0, 0.0, 30u);
     ok = ok && im_row_from_f64(&m->k_load, c->k_drag * w2_lsb / IM_Q_T, 0.0, 0.0, 30u);
     ok = ok && im_row_from_f64(&m->k_rpm, IM_RPM_PER_RADPS * 65536.0 * IM_Q_W, 0.0, 0.0, 30u);
+    ok = ok && im_row_from_f64(&m->k_open, IM_Q_I / (c->a_ss * IM_Q_PSI), 0.0, 0.0, 30u);
     return ok;
+}
+
+/* The drag's rows for a load factor; false when one does not fit. */
+static bool im_load_rows_q(const induction_motor_coefs *c, double factor,
+                           induction_motor_drag_q *l) {
+    const double w2_lsb = 2147483648.0 * IM_Q_W * IM_Q_W;
+    return im_row_from_f64(&l->k_eps, factor * c->eps_per_w * IM_Q_W * 2147483648.0, 0.0, 0.0,
+                           30u) &&
+           im_row_from_f64(&l->k_load, factor * c->k_drag * w2_lsb / IM_Q_T, 0.0, 0.0, 30u);
+}
+
+induction_motor_status induction_motor_load_q(const induction_motor_q *m, double factor,
+                                              induction_motor_drag_q *l) {
+    if (m == NULL || l == NULL) {
+        return INDUCTION_MOTOR_ERR_NULL;
+    }
+    if (!(factor >= 1.0 && factor <= 1e3)) {
+        return INDUCTION_MOTOR_ERR_PARAM;
+    }
+    return im_load_rows_q(&m->c, factor, l) ? INDUCTION_MOTOR_OK : INDUCTION_MOTOR_ERR_RANGE;
+}
+
+void induction_motor_set_load_q(induction_motor_q *m, const induction_motor_drag_q *l) {
+    m->k_eps = l->k_eps;
+    m->k_load = l->k_load;
 }
 
 induction_motor_status induction_motor_init_q(induction_motor_q *m, const induction_motor_params *p,

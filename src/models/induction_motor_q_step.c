@@ -149,3 +149,29 @@ void induction_motor_step_q(induction_motor_q *m, const induction_motor_in_q *in
     im_mechanics_q(m, im_torque_q(m));
     im_outputs_q(m, out);
 }
+
+/*
+ * An open phase (induction_motor.h): with u the phase's unit vector in the
+ * alpha-beta plane ((1, 0), (-1/2, sqrt(3)/2), (-1/2, -sqrt(3)/2)) and i_x
+ * its current, the stator flux moves by -u i_x / a_ss (row k_open), which
+ * takes i_x out of the stator current and leaves the rotor flux alone.
+ * k_open is 32 / a_ss raw flux per raw current (about 0.1 for the drive's
+ * motor), so |d| < 2^31 and d sqrt(3)/2 2^31 < 2^62; the new fluxes are
+ * saturated and counted.
+ */
+void induction_motor_open_phase_q(induction_motor_q *m, uint32_t phase,
+                                  induction_motor_out_q *out) {
+    uint32_t *sat = &m->sat_count;
+    const q31_t i_x = (phase == 0u) ? out->i_a : (phase == 1u) ? out->i_b : out->i_c;
+    const int64_t d = im_mul1_q(&m->k_open, i_x);
+    int64_t d_al = d;
+    int64_t d_be = 0;
+    if (phase != 0u) {
+        d_al = -fp_shr_round_i64(d, 1u);
+        d_be = fp_shr_round_i64(d * IM_Q31_HALF_SQRT3, 31u);
+        d_be = (phase == 1u) ? d_be : -d_be;
+    }
+    m->psi_s[0] = fp_sat_cnt_q31((int64_t)m->psi_s[0] - d_al, sat);
+    m->psi_s[1] = fp_sat_cnt_q31((int64_t)m->psi_s[1] - d_be, sat);
+    im_outputs_q(m, out);
+}

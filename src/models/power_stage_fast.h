@@ -102,4 +102,13 @@ static inline void ps_fast_step_f32(power_stage_f32 *ps, const ps_battery_f32 *b
     ps->sat_count = sat;
 }
 
+/*
+ * The same steps out of line (power_stage_step.c), for callers that are not
+ * the real-time path: one inlined copy there, one call everywhere else.
+ */
+void ps_fast_step_call_q(power_stage_q *ps, const ps_battery_q *bat, const int32_t s[3],
+                         int32_t im_a, int32_t im_b);
+void ps_fast_step_call_f32(power_stage_f32 *ps, const ps_battery_f32 *bat, const int32_t s[3],
+                           float im_a, float im_b);
+
 #endif /* UUV_POWER_STAGE_FAST_H */

@@ -13,10 +13,10 @@ trap 'rm -rf "$tmp"' EXIT
 pass=0
 fail=0
 
-# run FAULT: writes $tmp/s.json and $tmp/r.csv
+# run FAULT [RPM]: writes $tmp/s.json and $tmp/r.csv
 run() {
-    printf 'duration 4\nat 0 n_rpm=1000\nat 1 rudder=10deg\nat 2 %s\nat 2.5 rudder=-10deg\n' \
-        "$1" >"$tmp/f.scn"
+    printf 'duration 4\nat 0 n_rpm=%s\nat 1 rudder=10deg\nat 2 %s\nat 2.5 rudder=-10deg\n' \
+        "${2:-1000}" "$1" >"$tmp/f.scn"
     "$uuvsim" --scenario "$tmp/f.scn" --json --csv "$tmp/r.csv" >"$tmp/s.json" 2>"$tmp/err"
 }
 
@@ -31,12 +31,12 @@ last() {
                        { v = $k } END { print v }' "$tmp/r.csv"
 }
 
-# check NAME FAULT CONDITION: runs the fault, then the common checks and CONDITION (awk on
-# the variables n, trip, reason, vdc, ibatt, dr, sat)
+# check NAME FAULT CONDITION [RPM]: runs the fault, then the common checks and CONDITION (awk
+# on the variables n, trip, reason, vdc, ibatt, dr, te, irms, lim, sat)
 check() {
     name=$1; fault=$2; cond=$3
     why=""
-    run "$fault" || why="exit status $?: $(cat "$tmp/err")"
+    run "$fault" "${4:-1000}" || why="exit status $?: $(cat "$tmp/err")"
     key=${fault%%=*}
     if [ -z "$why" ]; then
         grep -q "\"faults\": \[[^]]*\"$key\"" "$tmp/s.json" || why="fault not in the summary"
@@ -48,8 +48,9 @@ check() {
         ok=$(awk -v n="$(field n_rpm)" -v trip="$(field tripped)" -v reason="$(field reason)" \
                  -v vdc="$(last v_dc)" -v ibatt="$(last i_batt_a)" \
                  -v dr="$(last delta_r_rad)" -v sat="$(field saturations)" \
+                 -v te="$(last te_nm)" -v irms="$(last i_rms_a)" -v lim="$(field torque_limit_s)" \
                  "BEGIN { print (($cond) ? 1 : 0) }")
-        [ "$ok" = 1 ] || why="reaction not as expected: n_rpm $(field n_rpm), tripped $(field tripped) ($(field reason)), v_dc $(last v_dc), i_batt $(last i_batt_a), delta_r $(last delta_r_rad)"
+        [ "$ok" = 1 ] || why="reaction not as expected: n_rpm $(field n_rpm), tripped $(field tripped) ($(field reason)), v_dc $(last v_dc), i_batt $(last i_batt_a), delta_r $(last delta_r_rad), te $(last te_nm), torque limit $(field torque_limit_s) s"
     fi
     if [ -z "$why" ]; then
         pass=$((pass + 1)); echo "  ok    $name"
@@ -70,5 +71,11 @@ check "rudder jammed at 10 deg: the -10 deg command is ignored" \
     "fin_jam=rudder" 'dr > 0.17 && dr < 0.18 && trip == "false"'
 check "phase-a current sensor offset 10 A: runs on, speed within 1 %, no trip" \
     "current_offset=10" 'n > 990 && n < 1010 && trip == "false"'
+check "motor phase b open: the phase-loss protection trips, gates blocked, the shaft coasts down" \
+    "phase_open=b" 'trip == "true" && reason == "phase loss" && n < 500'
+check "propeller fouled (load x3) at 1000 rpm: three times the torque, speed within 2 %, no trip" \
+    "prop_fouling=3" 'n > 980 && n < 1020 && te > 70 && te < 85 && trip == "false"'
+check "propeller fouled (load x3) at 1400 rpm: the torque limit holds 95 N m, the speed falls to 1105" \
+    "prop_fouling=3" 'n > 1080 && n < 1130 && te > 90 && te < 100 && lim > 1.5 && trip == "false"' 1400
 echo "$pass passed, $fail failed"
 [ "$fail" -eq 0 ]

@@ -735,6 +735,110 @@ static void test_extremes(void) {
     UT_EQ_INT(motor_a.q.sat_count, 0);
 }
 
+/* The fault hooks: a step with a phase open (projection after the step), a load factor. */
+static void motor_step_open(motor *m, const double v[3], uint32_t phase, motor_out *o) {
+    if (m->kind == TWIN_FIXED) {
+        induction_motor_in_q in;
+        induction_motor_out_q out;
+        in.v_a = fp_pu_from_f64_q31(v[0], DRIVE_BASE_VOLTAGE_V);
+        in.v_b = fp_pu_from_f64_q31(v[1], DRIVE_BASE_VOLTAGE_V);
+        in.v_c = fp_pu_from_f64_q31(v[2], DRIVE_BASE_VOLTAGE_V);
+        induction_motor_step_q(&m->q, &in, &out);
+        induction_motor_open_phase_q(&m->q, phase, &out);
+        o->i[0] = q31_si(out.i_a, DRIVE_BASE_CURRENT_A);
+        o->i[1] = q31_si(out.i_b, DRIVE_BASE_CURRENT_A);
+        o->i[2] = q31_si(out.i_c, DRIVE_BASE_CURRENT_A);
+    } else {
+        induction_motor_in_f32 in = {(float)v[0], (float)v[1], (float)v[2]};
+        induction_motor_out_f32 out;
+        induction_motor_step_f32(&m->f, &in, &out);
+        induction_motor_open_phase_f32(&m->f, phase, &out);
+        o->i[0] = (double)out.i_a;
+        o->i[1] = (double)out.i_b;
+        o->i[2] = (double)out.i_c;
+    }
+}
+
+static induction_motor_status motor_load_factor(motor *m, double factor) {
+    induction_motor_status st;
+    if (m->kind == TWIN_FIXED) {
+        induction_motor_drag_q l;
+        st = induction_motor_load_q(&m->q, factor, &l);
+        if (st == INDUCTION_MOTOR_OK) {
+            induction_motor_set_load_q(&m->q, &l);
+        }
+    } else {
+        induction_motor_drag_f32 l;
+        st = induction_motor_load_f32(&m->f, factor, &l);
+        if (st == INDUCTION_MOTOR_OK) {
+            induction_motor_set_load_f32(&m->f, &l);
+        }
+    }
+    return st;
+}
+
+/*
+ * Faults. An open phase: at 50 Hz, half the rated voltage reached in a 50 ms
+ * ramp (a step from rest drives the single-phased machine past the 256 A
+ * base), locked at 1470 rpm,
+ * the phase's current stays at zero (below 0.1 % of the others' peak)
+ * while the other two carry one current in series (i_y = -i_z); each phase
+ * in turn. Fouling: locked at 1300 rpm, the load torque with factor 3 is
+ * three times the clean one; factors below 1 or not finite are refused.
+ */
+static void test_faults(void) {
+    const propeller_model prop = propeller();
+    for (int k = 0; k < 2; k++) {
+        motor *m = &motor_a;
+        for (uint32_t ph = 0u; ph < 3u; ph++) {
+            UT_CHECK(motor_init(m, (twin_kind)k, &induction_motor_params_15kw_delta, NULL) ==
+                     INDUCTION_MOTOR_OK);
+            motor_set_speed(m, 1470.0 * MATH_PI_F64 / 30.0, true);
+            sine3 s;
+            sine3_init(&s, 50.0);
+            motor_out o;
+            double peak = 0.0;
+            double open_max = 0.0;
+            double series_err = 0.0;
+            for (int n = 0; n < 2000; n++) {
+                double v[3];
+                const double x = (n < 500) ? ((double)n + 0.5) / 500.0 : 1.0;
+                sine3_next(&s, 0.5 * rated_peak_v(&induction_motor_params_15kw_delta) * x, v);
+                motor_step_open(m, v, ph, &o);
+                const uint32_t y = (ph + 1u) % 3u;
+                const uint32_t z = (ph + 2u) % 3u;
+                if (n >= 1000) {
+                    peak = max_d(peak, abs_d(o.i[y]));
+                    open_max = max_d(open_max, abs_d(o.i[ph]));
+                    series_err = max_d(series_err, abs_d(o.i[y] + o.i[z]));
+                }
+            }
+            UT_TEST("fault: an open phase's current stays at zero, the other two in series");
+            ut_info("%s, phase %c open: peak %.4g A, open phase max %.3g A, |i_y + i_z| max %.3g A",
+                    twin_name[k], (char)('a' + (int)ph), peak, open_max, series_err);
+            UT_CHECK(peak > 10.0);
+            UT_CHECK(open_max < 1e-3 * peak);
+            UT_CHECK(series_err < 1e-3 * peak);
+            UT_EQ_INT(motor_sat(m), 0);
+        }
+        UT_TEST("fault: propeller fouling x3 triples the load torque; factors < 1 or > 1000 refused");
+        UT_CHECK(motor_init(m, (twin_kind)k, &induction_motor_params_15kw_delta, &prop) ==
+                 INDUCTION_MOTOR_OK);
+        const double v0[3] = {0.0, 0.0, 0.0};
+        motor_out clean, fouled;
+        motor_set_speed(m, 1300.0 * MATH_PI_F64 / 30.0, true);
+        motor_step(m, v0, &clean);
+        UT_CHECK(motor_load_factor(m, 3.0) == INDUCTION_MOTOR_OK);
+        motor_set_speed(m, 1300.0 * MATH_PI_F64 / 30.0, true);
+        motor_step(m, v0, &fouled);
+        ut_info("%s: load torque clean %.6g N m, fouled %.6g N m", twin_name[k], clean.tl,
+                fouled.tl);
+        UT_NEAR(fouled.tl / clean.tl, 3.0, 1e-6);
+        UT_CHECK(motor_load_factor(m, 0.5) == INDUCTION_MOTOR_ERR_PARAM);
+        UT_CHECK(motor_load_factor(m, 2e3) == INDUCTION_MOTOR_ERR_PARAM);
+    }
+}
+
 void suite_induction_motor(void) {
     test_init();
     test_init_limits();
@@ -744,4 +848,5 @@ void suite_induction_motor(void) {
     test_double_twin();
     test_ramp();
     test_extremes();
+    test_faults();
 }

@@ -86,13 +86,14 @@ static void test_more_forms(void) {
     UT_TEST("scenario: the fault commands read their named parts as 1, 2, ... in the order "
             "of scenario.h (b- = 4, c = 3, stern = 2, on = 1) and their numbers in range");
     UT_CHECK(parse("at 7 switch_open=b- leg_short=c dc_cap=0.5 battery_cutoff=on "
-                   "fin_jam=stern current_offset=-2.5\n"));
-    UT_EQ_INT(scn.n_events, 6);
-    static const int want_cmd[6] = {SCN_FAULT_SWITCH_OPEN,    SCN_FAULT_LEG_SHORT,
+                   "fin_jam=stern current_offset=-2.5 phase_open=b prop_fouling=3\n"));
+    UT_EQ_INT(scn.n_events, 8);
+    static const int want_cmd[8] = {SCN_FAULT_SWITCH_OPEN,    SCN_FAULT_LEG_SHORT,
                                     SCN_FAULT_DC_CAP,         SCN_FAULT_BATTERY_CUTOFF,
-                                    SCN_FAULT_FIN_JAM,        SCN_FAULT_CURRENT_OFFSET};
-    static const double want_val[6] = {4.0, 3.0, 0.5, 1.0, 2.0, -2.5};
-    for (size_t i = 0; i < 6u && i < scn.n_events; i++) {
+                                    SCN_FAULT_FIN_JAM,        SCN_FAULT_CURRENT_OFFSET,
+                                    SCN_FAULT_PHASE_OPEN,     SCN_FAULT_PROP_FOULING};
+    static const double want_val[8] = {4.0, 3.0, 0.5, 1.0, 2.0, -2.5, 2.0, 3.0};
+    for (size_t i = 0; i < 8u && i < scn.n_events; i++) {
         UT_EQ_INT(scn.events[i].command, want_cmd[i]);
         UT_NEAR(scn.events[i].value, want_val[i], 0.0);
         UT_NEAR(scn.events[i].t_s, 7.0, 0.0);
@@ -107,6 +108,9 @@ static void test_more_forms(void) {
     expect_error("at 1 fin_jam=keel\n", 1, "fin_jam");
     expect_error("at 1 dc_cap=0.01\n", 1, "dc_cap");
     expect_error("at 1 current_offset=60\n", 1, "current_offset");
+    expect_error("at 1 phase_open=d\n", 1, "phase_open");
+    expect_error("at 1 prop_fouling=0.5\n", 1, "prop_fouling");
+    expect_error("at 1 prop_fouling=11\n", 1, "prop_fouling");
 
     UT_TEST("scenario errors: a NUL byte inside the text is a control character");
     static const char with_nul[] = "duration 10\nat 1 n_rpm=5\0\n";
