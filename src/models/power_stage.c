@@ -78,9 +78,9 @@ static int32_t ps_to_fixed(double x, unsigned bits, int *ok) {
 static int32_t ps_q28_from(double value, double base) {
     double pu = value / base;
     int ok = 1;
-    if (pu > 1.0) {
+    if (pu > 1.0) { /* LCOV_EXCL_BR_LINE: callers pass [0, 1024) V (checked v_dc0, clamped e) */
         pu = 1.0;
-    } else if (pu < -1.0) {
+    } else if (pu < -1.0) { /* LCOV_EXCL_BR_LINE: no caller passes a negative value */
         pu = -1.0;
     }
     return ps_to_fixed(pu, 28u, &ok);
