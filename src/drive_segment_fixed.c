@@ -30,10 +30,12 @@ static q31_t mean_q31(int64_t sum, unsigned shift, uint32_t n, uint32_t *sat) {
 /* Splits a positive factor into an int32 mantissa below 2^30 and a right shift. */
 static void factor_split(double f, int32_t *mant, uint32_t *shift) {
     uint32_t sh = 0u;
-    while (sh < 62u && f * (double)(1ull << (sh + 1u)) < 1073741824.0) {
+    double scale = 1.0; /* 2^sh, exact */
+    while (sh < 62u && f * (scale * 2.0) < 1073741824.0) {
+        scale *= 2.0;
         sh++;
     }
-    *mant = (int32_t)(f * (double)(1ull << sh) + 0.5);
+    *mant = (int32_t)(f * scale + 0.5);
     *shift = sh;
 }
 
