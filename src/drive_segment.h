@@ -63,7 +63,8 @@
 /* Inverter model (the paper's layered model). */
 typedef enum {
     DRIVE_INVERTER_SWITCHING = 0, /* six switches at the fast step, switch states held per step */
-    DRIVE_INVERTER_AVERAGED,      /* leg duty cycles, run at the motor's frame */
+    DRIVE_INVERTER_AVERAGED,      /* leg duty cycles, quasi-static filter and DC link, run
+                                   * with the motor at one frame (inverter_avg.h) */
     DRIVE_INVERTER_EVENT          /* switching instants located inside the fast step */
 } drive_inverter;
 
@@ -86,11 +87,10 @@ typedef struct {
     drive_inverter inverter;
     coupling_down down;       /* motor currents to the fast segment */
     coupling_up up;           /* capacitor voltages to the motor, measurements to the slow segment */
-    uint32_t fast_ns;         /* [ns] power-stage step (the motor frame in averaged mode) */
+    uint32_t fast_ns;         /* [ns] power-stage step (the frame of the averaged layer) */
     uint32_t fast_per_medium; /* fast steps per motor frame */
     uint32_t medium_per_control; /* motor frames per controller frame */
     uint32_t medium_per_slow;    /* motor frames per slow frame (the speed filter's time constant) */
-    uint32_t averaged_substeps;  /* power-stage substeps per step of the averaged inverter */
     bool energy_audit;        /* count the filter's and the motor's losses (general fast path) */
     double v_dc0_v;           /* [V] initial DC-link voltage */
 } drive_config;
@@ -222,9 +222,10 @@ typedef struct {
     int32_t s[3];               /* leg states of the last step (switching) */
     pwm_q pwm;
     power_stage_q ps;
-    inverter_avg_q avg;
+    inverter_qs_q qs;           /* the averaged layer's stage */
+    inverter_qs_bus_q bus, bus_next; /* its DC-link constants: in force, for the next slow frame */
     pwm_q *mod;                 /* the general modulator in use (event or averaged) */
-    power_stage_q *stage;       /* the power stage in use (ps, or the averaged one's) */
+    power_stage_q *stage;       /* the power stage in use (ps; NULL in the averaged layer) */
     pwm_out_q pout;             /* the general modulator's last step */
     power_stage_in_q in;        /* duties, motor currents (Q15), battery: the fast inputs */
     /* The motor's fast companion (see drive_segment.h): currents a, b, EMF. */
@@ -323,7 +324,8 @@ typedef struct {
     int32_t s[3];
     pwm_f32 pwm;
     power_stage_f32 ps;
-    inverter_avg_f32 avg;
+    inverter_qs_f32 qs;
+    inverter_qs_bus_f32 bus, bus_next;
     pwm_f32 *mod;
     power_stage_f32 *stage;
     pwm_out_f32 pout;

@@ -8,6 +8,8 @@
 
 #if UUV_NUMERIC == UUV_NUMERIC_FLOAT
 
+#include <stddef.h>
+
 #include "math/umath.h"
 #include "models/power_stage_fast.h"
 
@@ -15,9 +17,10 @@ static const pwm_params pwm_sampled = {5000.0, PWM_EDGES_SAMPLED, 0u, 0u};
 static const pwm_params pwm_located = {5000.0, PWM_EDGES_INTERPOLATED, 0u, 0u};
 
 drive_status drive_init(drive_segment *d, const drive_config *cfg, const propeller_model *prop) {
+    const bool averaged = (cfg->inverter == DRIVE_INVERTER_AVERAGED);
     if (cfg->fast_ns < 100u || cfg->fast_per_medium == 0u || cfg->medium_per_control == 0u ||
-        cfg->fast_per_medium > 100000u || cfg->averaged_substeps == 0u ||
-        cfg->medium_per_slow == 0u) {
+        cfg->fast_per_medium > 100000u || cfg->medium_per_slow == 0u ||
+        (averaged && cfg->fast_per_medium != 1u)) {
         return DRIVE_ERR_CONFIG;
     }
     *d = (drive_segment){0};
@@ -28,15 +31,17 @@ drive_status drive_init(drive_segment *d, const drive_config *cfg, const propell
     double fast_s = 1e-9 * (double)cfg->fast_ns;
     double medium_s = fast_s * (double)cfg->fast_per_medium;
     uint32_t mod_ns = cfg->fast_ns;
-    if (cfg->inverter == DRIVE_INVERTER_AVERAGED) {
-        if (inverter_avg_init_f32(&d->avg, &pwm_located, &d->ps_params,
-                                  cfg->fast_ns, cfg->averaged_substeps,
-                                  cfg->v_dc0_v) != INVERTER_AVG_OK) {
+    induction_motor_params mp = induction_motor_params_15kw_delta;
+    if (averaged) {
+        if (inverter_qs_init_f32(&d->qs, &pwm_located, cfg->fast_ns, cfg->v_dc0_v) !=
+            INVERTER_AVG_OK) {
             return DRIVE_ERR_MODEL;
         }
-        d->mod = &d->avg.mod;
-        d->stage = &d->avg.stage;
-        mod_ns = cfg->fast_ns / cfg->averaged_substeps;
+        d->mod = &d->qs.mod;
+        d->stage = NULL;
+        /* The filter's series branch joins the stator (inverter_avg.h). */
+        mp.rs_ohm += d->ps_params.r_l_ohm;
+        mp.lls_h += d->ps_params.l_h;
     } else {
         if (pwm_init_f32(&d->pwm, &pwm_located, cfg->fast_ns) != PWM_OK ||
             pwm_rt_init(&d->rt, &pwm_sampled, cfg->fast_ns) != PWM_OK ||
@@ -47,8 +52,7 @@ drive_status drive_init(drive_segment *d, const drive_config *cfg, const propell
         d->mod = &d->pwm;
         d->stage = &d->ps;
     }
-    if (induction_motor_init_f32(&d->motor, &induction_motor_params_15kw_delta, prop,
-                                 medium_s) != INDUCTION_MOTOR_OK) {
+    if (induction_motor_init_f32(&d->motor, &mp, prop, medium_s) != INDUCTION_MOTOR_OK) {
         return DRIVE_ERR_MODEL;
     }
     double k_l = d->motor.c.a_ss * fast_s;
@@ -72,9 +76,15 @@ drive_status drive_init(drive_segment *d, const drive_config *cfg, const propell
     if (induction_motor_load_f32(&d->motor, 1.0, &d->load_next) != INDUCTION_MOTOR_OK) {
         return DRIVE_ERR_MODEL;
     }
-    d->neg_k_c_next = d->stage->k.neg_k_c;
+    d->neg_k_c_next = averaged ? 0.0f : d->stage->k.neg_k_c;
     return DRIVE_OK;
 }
+
+/* The DC-link voltage of the stage in use [V], whichever it is. */
+static float stage_v_dc(const drive_segment *d) {
+    return (d->stage != NULL) ? d->stage->v_dc : d->qs.v_dc;
+}
+
 
 /* The real-time step (as in drive_segment_fixed.c). */
 static inline void fast_tick_plain(drive_segment *d) {
@@ -135,20 +145,19 @@ static void faulted_states(drive_segment *d) {
 static void fast_tick_general(drive_segment *d) __attribute__((noinline));
 static void fast_tick_general(drive_segment *d) {
     if (d->cfg.inverter == DRIVE_INVERTER_AVERAGED) {
-        inverter_avg_step_f32(&d->avg, &d->in);
+        return; /* the averaged layer's stage runs at the boundary (drive_medium_publish) */
+    }
+    if (d->cfg.inverter == DRIVE_INVERTER_SWITCHING) {
+        /* As in drive_segment_fixed.c: the real-time step with the faults' states. */
+        pwm_rt_step(&d->rt, d->s);
+        faulted_states(d);
+        ps_fast_step_call_f32(&d->ps, &d->in.battery, d->s, d->i_fast[0], d->i_fast[1]);
     } else {
-        if (d->cfg.inverter == DRIVE_INVERTER_SWITCHING) {
-            /* As in drive_segment_fixed.c: the real-time step with the faults' states. */
-            pwm_rt_step(&d->rt, d->s);
-            faulted_states(d);
-            ps_fast_step_call_f32(&d->ps, &d->in.battery, d->s, d->i_fast[0], d->i_fast[1]);
-        } else {
-            pwm_step_f32(&d->pwm, &d->pout);
-            d->in.duty[0] = d->pout.duty[0];
-            d->in.duty[1] = d->pout.duty[1];
-            d->in.duty[2] = d->pout.duty[2];
-            power_stage_step_f32(&d->ps, &d->in);
-        }
+        pwm_step_f32(&d->pwm, &d->pout);
+        d->in.duty[0] = d->pout.duty[0];
+        d->in.duty[1] = d->pout.duty[1];
+        d->in.duty[2] = d->pout.duty[2];
+        power_stage_step_f32(&d->ps, &d->in);
     }
     const power_stage_f32 *ps = d->stage;
     const float va = ps->ph[0].v_c;
@@ -184,7 +193,9 @@ void drive_fast_tick(drive_segment *d) {
 
 static void faults_apply(drive_segment *d) {
     d->fault = d->fault_next;
-    d->stage->k.neg_k_c = d->neg_k_c_next;
+    if (d->stage != NULL) {
+        d->stage->k.neg_k_c = d->neg_k_c_next; /* the averaged layer's is in bus_next */
+    }
     d->i_offset = d->i_offset_next;
     induction_motor_set_load_f32(&d->motor, &d->load_next);
     if (d->fault.leg_short != 0u && d->trip == (uint8_t)DRIVE_TRIP_NONE) {
@@ -228,7 +239,36 @@ void drive_medium_latch(drive_segment *d) {
     }
 }
 
+/* The averaged layer's boundary, as in drive_segment_fixed.c (out of line, as there). */
+__attribute__((noinline)) static void publish_averaged(drive_segment *d, bool slow_boundary) {
+    inverter_qs_step_f32(&d->qs, &d->bus, d->i_fast[0], d->i_fast[1]);
+    if (slow_boundary) {
+        d->bat_done = d->bat_in_force;
+        if (d->battery_new) {
+            d->bus = d->bus_next;
+            d->bat_in_force = d->bat_next;
+            d->battery_new = false;
+        }
+        if (d->fault_new) {
+            faults_apply(d);
+        }
+    }
+    drive_frame_sums *m = &d->medium_in;
+    for (int x = 0; x < 2; x++) {
+        m->v_cap[x] = d->qs.u[x];
+        m->v_mark[x] = d->qs.u[x];
+        m->filt_mark[x] = d->qs.u[x];
+        m->i_mark[x] = d->i_fast[x];
+    }
+    m->v_dc = d->qs.v_dc;
+    m->sat = d->qs.sat_count;
+}
+
 void drive_medium_publish(drive_segment *d, bool slow_boundary) {
+    if (d->stage == NULL) {
+        publish_averaged(d, slow_boundary);
+        return;
+    }
     if (slow_boundary) {
         d->bat_done = d->bat_in_force;
         if (d->battery_new) {
@@ -344,7 +384,9 @@ void drive_medium_task(drive_segment *d, bool control_due, bool slow_boundary) {
     }
     float i_end[2] = {d->mout.i_a, d->mout.i_b};
     float v_mean[2] = {min.v_a, min.v_b};
-    emf_update(d, v_mean, i_end);
+    if (d->stage != NULL) {
+        emf_update(d, v_mean, i_end); /* the averaged layer has no fast companion */
+    }
     for (int x = 0; x < 2; x++) {
         d->out.corr[x] = i_end[x] - s->i_mark[x];
         d->i_prev[x] = i_end[x];
@@ -378,10 +420,10 @@ void drive_medium_task(drive_segment *d, bool control_due, bool slow_boundary) {
         drive_slow_sums *w = &d->slow;
         w->w_filt = d->w_filt;
         w->w_end = d->mout.w_radps;
-        w->v_dc_end = d->stage->v_dc;
+        w->v_dc_end = stage_v_dc(d);
         w->cmd = d->cmd;
         w->trip = d->trip;
-        w->saturations = s->sat + d->pwm.sat_count + d->avg.mod.sat_count + d->ps_clamps;
+        w->saturations = s->sat + d->pwm.sat_count + d->qs.mod.sat_count + d->ps_clamps;
         d->slow_out = *w;
         *w = (drive_slow_sums){0};
     }
@@ -429,9 +471,14 @@ void drive_fault_request(drive_segment *d, const drive_faults *f) {
     power_stage_params faulted = d->ps_params;
     d->fault_next = *f;
     faulted.c_dc_f = power_stage_params_default.c_dc_f * f->dc_cap_frac;
-    /* The stage's set-up forms the DC-link coefficient for the new capacitance;
-     * a capacitance it refuses leaves the one in force. */
-    if (power_stage_init_f32(&scratch, &faulted, d->stage->step_ns, 600.0) == PS_OK) {
+    if (d->stage == NULL) {
+        /* As in drive_segment_fixed.c: the bus constants fold the capacitance in. */
+        d->ps_params.c_dc_f = faulted.c_dc_f;
+        d->ps_clamps += inverter_qs_battery_f32(&d->qs, d->ps_params.c_dc_f, d->bat_next.g_s,
+                                                d->bat_next.b_a, &d->bus_next);
+        d->battery_new = true;
+    } else if (power_stage_init_f32(&scratch, &faulted, d->stage->step_ns, 600.0) == PS_OK) {
+        /* As in drive_segment_fixed.c: a refused capacitance leaves the one in force. */
         d->ps_params.c_dc_f = faulted.c_dc_f;
         d->neg_k_c_next = scratch.k.neg_k_c;
     } else {
@@ -450,12 +497,24 @@ void drive_trip_request(drive_segment *d, drive_trip why) {
 
 void drive_battery_next(drive_segment *d, const drive_battery *next) {
     d->bat_next = *next;
-    d->ps_clamps += power_stage_battery_f32(d->stage, next->g_s, next->b_a, &d->battery_next);
+    if (d->stage == NULL) {
+        d->ps_clamps += inverter_qs_battery_f32(&d->qs, d->ps_params.c_dc_f, next->g_s,
+                                                next->b_a, &d->bus_next);
+    } else {
+        d->ps_clamps +=
+            power_stage_battery_f32(d->stage, next->g_s, next->b_a, &d->battery_next);
+    }
     d->battery_new = true;
 }
 
 void drive_start(drive_segment *d, const drive_battery *battery) {
     d->bat_next = d->bat_in_force = d->bat_done = *battery;
+    if (d->stage == NULL) {
+        d->ps_clamps += inverter_qs_battery_f32(&d->qs, d->ps_params.c_dc_f, battery->g_s,
+                                                battery->b_a, &d->bus);
+        d->bus_next = d->bus;
+        return;
+    }
     d->ps_clamps +=
         power_stage_battery_f32(d->stage, battery->g_s, battery->b_a, &d->in.battery);
     d->battery_next = d->in.battery;
@@ -463,8 +522,29 @@ void drive_start(drive_segment *d, const drive_battery *battery) {
 
 void drive_speed_command(drive_segment *d, double speed_radps) { d->speed_cmd = (float)speed_radps; }
 
+/* The trace row of the averaged layer: no switching, the terminals are the inverter's. */
+static void trace_averaged(const drive_segment *d, drive_trace_row *row) {
+    row->s[0] = row->s[1] = row->s[2] = 0u;
+    row->m_index = (double)d->cmd.m;
+    row->f_hz = (double)d->cmd.freq_hz;
+    row->v_dc = (double)d->qs.v_dc;
+    for (int x = 0; x < 2; x++) {
+        row->v_inv[x] = row->v_cap[x] = (double)d->qs.u[x];
+        row->i_motor[x] = (double)d->i_fast[x];
+    }
+    row->v_inv[2] = row->v_cap[2] = -row->v_inv[0] - row->v_inv[1];
+    row->i_motor[2] = -row->i_motor[0] - row->i_motor[1];
+    row->i_dc = (double)d->qs.i_dc;
+    row->n_rpm = (double)d->mout.n_rpm;
+    row->te_nm = (double)d->mout.te_nm;
+}
+
 void drive_trace(const drive_segment *d, drive_trace_row *row) {
     const power_stage_f32 *ps = d->stage;
+    if (ps == NULL) {
+        trace_averaged(d, row);
+        return;
+    }
     bool rt = (d->cfg.inverter == DRIVE_INVERTER_SWITCHING);
     for (int x = 0; x < 3; x++) {
         row->s[x] = rt ? (uint8_t)d->s[x] : d->pout.state[x];

@@ -149,9 +149,17 @@ static exec_status init_frames(exec *e, const exec_config *cfg, double duration)
         c->medium_per_slow = 1u;
         e->slow_per_report = cfg->fast_per_medium * cfg->medium_per_slow;
     } else if (cfg->inverter == DRIVE_INVERTER_AVERAGED) {
-        /* The averaged inverter runs at the motor's frame. */
-        c->fast_ns = cfg->fast_ns * cfg->fast_per_medium;
+        /* The averaged layer runs its stage and the motor at the controller's
+         * frame (inverter_avg.h): one frame per controller step. */
+        uint64_t frame_ns =
+            (uint64_t)cfg->fast_ns * cfg->fast_per_medium * cfg->medium_per_control;
+        if (frame_ns > 0xFFFFFFFFu) {
+            return EXEC_ERR_CONFIG;
+        }
+        c->fast_ns = (uint32_t)frame_ns;
         c->fast_per_medium = 1u;
+        c->medium_per_slow = cfg->medium_per_slow / cfg->medium_per_control;
+        c->medium_per_control = 1u;
     }
     double slow_ns = (double)c->fast_ns * (double)c->fast_per_medium * (double)c->medium_per_slow;
     e->slow_s = 1e-9 * slow_ns;
@@ -190,7 +198,6 @@ static exec_status init_drive(exec *e) {
     dc.fast_per_medium = c->fast_per_medium;
     dc.medium_per_control = c->medium_per_control;
     dc.medium_per_slow = c->medium_per_slow;
-    dc.averaged_substeps = (c->fast_ns >= 8000u) ? 4u : 1u;
     dc.v_dc0_v = battery_voltage_f64(&e->bat, 0.0);
     dc.energy_audit = c->energy_audit;
     if (drive_init(&e->drive, &dc, &e->prop) != DRIVE_OK) {

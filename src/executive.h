@@ -23,6 +23,16 @@
  * results would otherwise depend on timing), never silently. On the desk,
  * where the tasks run in sequence, there are none.
  *
+ * The averaged layer (inverter averaged, inverter_avg.h) runs its
+ * quasi-static stage and the motor together at the controller's frame
+ * (800 us): one fast tick, one motor step and one controller step per
+ * frame. The stage is algebraic in what the boundary's latch takes (the
+ * command, the motor currents at the frame's start), so it runs at the
+ * boundary, ahead of the motor task that integrates its frame; the
+ * controller's result then acts one control frame after its inputs, as in
+ * the single-rate reference (the switching model's pipeline adds a motor
+ * frame, 100 us).
+ *
  * In single-rate mode every segment that integrates runs at the fast frame
  * (the paper's baseline): the same code with the motor and slow ratios 1,
  * and telemetry still every 100 ms. The controller keeps its 800 us sample

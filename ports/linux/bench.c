@@ -10,6 +10,16 @@
  * the reference (RMS over the run of the difference, relative to the RMS
  * of the reference signal); times each segment's step on its own. Prints a
  * table on stderr and one JSON object on stdout.
+ *
+ * The averaged layer is also compared with the single-rate run of the
+ * switching-event inverter (edges located inside the 2 us step), the
+ * reference for what it models: the default reference's fixed-step
+ * switching quantises pulse widths to 50 values per carrier period, which
+ * at the start-up's small modulation indices (m < 0.05 for 0.2 s) leaves
+ * the voltage vector parked in one sector, so the two references differ
+ * by about 7 % in shaft speed over this start-up (docs/multirate.md). Its
+ * real-time factor is the best of five runs (one run takes well under a
+ * millisecond).
  */
 #include <math.h>
 #include <stdio.h>
@@ -179,10 +189,14 @@ int main(int argc, char **argv) {
     exec_config cfg;
     exec_config_default(&cfg);
     cfg.duration_s = (argc == 3) ? atof(argv[2]) : 2.0;
-    static run_data ref, mr, avg, cpl;
+    static run_data ref, ref_ev, mr, avg, cpl;
     exec_config c = cfg;
     c.single_rate = true;
     if (run(&c, &ref) != 0) {
+        return 1;
+    }
+    c.inverter = DRIVE_INVERTER_EVENT;
+    if (run(&c, &ref_ev) != 0) {
         return 1;
     }
     if (run(&cfg, &mr) != 0) {
@@ -190,8 +204,12 @@ int main(int argc, char **argv) {
     }
     c = cfg;
     c.inverter = DRIVE_INVERTER_AVERAGED;
-    if (run(&c, &avg) != 0) {
-        return 1;
+    double avg_wall = 1e300;
+    for (int k = 0; k < 5; k++) {
+        if (run(&c, &avg) != 0) {
+            return 1;
+        }
+        avg_wall = (avg.wall_s < avg_wall) ? avg.wall_s : avg_wall;
     }
     double sim_s = mr.rec[mr.n - 1].t_s;
     errors e = compare(&mr, &ref);
@@ -200,7 +218,7 @@ int main(int argc, char **argv) {
 
     fprintf(stderr, "%s build, %.1f s of %s\n", UUV_NUMERIC_NAME, sim_s, argv[1]);
     fprintf(stderr, "  real-time factor: switching %.0f, averaged %.0f\n", sim_s / mr.wall_s,
-            sim_s / avg.wall_s);
+            sim_s / avg_wall);
     fprintf(stderr, "  cost per step: fast %.1f ns, motor %.1f ns, controller %.1f ns, "
                     "slow %.0f ns\n",
             ns[0], ns[1], ns[2], ns[3]);
@@ -216,7 +234,7 @@ int main(int argc, char **argv) {
            "\"err_surge_speed_pct\": %.6g, \"err_position_pct\": %.6g, "
            "\"ns_per_step\": {\"fast\": %.4g, \"medium\": %.4g, \"control\": %.4g, "
            "\"slow\": %.4g}, \"couplings\": [",
-           UUV_NUMERIC_NAME, sim_s, sim_s / mr.wall_s, sim_s / avg.wall_s,
+           UUV_NUMERIC_NAME, sim_s, sim_s / mr.wall_s, sim_s / avg_wall,
            ref.wall_s / mr.wall_s, ref.wall_s, mr.wall_s, e.shaft, e.current, e.surge,
            e.position, ns[0], ns[1], ns[2], ns[3]);
     bool first = true;
@@ -241,10 +259,24 @@ int main(int argc, char **argv) {
         }
     }
     errors ae = compare(&avg, &ref);
+    errors ee = compare(&avg, &ref_ev);
+    errors rr = compare(&ref, &ref_ev);
     fprintf(stderr, "    %-16s %8.3f %8.3f %8.3f %8.3f\n", "averaged", ae.shaft, ae.current,
             ae.surge, ae.position);
+    fprintf(stderr, "  against the single-rate switching-event reference:\n");
+    fprintf(stderr, "    %-16s %8.3f %8.3f %8.3f %8.3f\n", "averaged", ee.shaft, ee.current,
+            ee.surge, ee.position);
+    fprintf(stderr, "    %-16s %8.3f %8.3f %8.3f %8.3f\n", "fixed-step ref", rr.shaft,
+            rr.current, rr.surge, rr.position);
     printf("], \"averaged\": {\"err_shaft_speed_pct\": %.6g, \"err_current_pct\": %.6g, "
-           "\"err_surge_speed_pct\": %.6g, \"err_position_pct\": %.6g}}\n",
-           ae.shaft, ae.current, ae.surge, ae.position);
+           "\"err_surge_speed_pct\": %.6g, \"err_position_pct\": %.6g}, "
+           "\"averaged_vs_event_reference\": {\"err_shaft_speed_pct\": %.6g, "
+           "\"err_current_pct\": %.6g, \"err_surge_speed_pct\": %.6g, "
+           "\"err_position_pct\": %.6g}, "
+           "\"reference_vs_event_reference\": {\"err_shaft_speed_pct\": %.6g, "
+           "\"err_current_pct\": %.6g, \"err_surge_speed_pct\": %.6g, "
+           "\"err_position_pct\": %.6g}}\n",
+           ae.shaft, ae.current, ae.surge, ae.position, ee.shaft, ee.current, ee.surge,
+           ee.position, rr.shaft, rr.current, rr.surge, rr.position);
     return 0;
 }

@@ -183,6 +183,9 @@ float math_fmod_f32(float x, float y);
 double math_sqrt_f64(double x);
 float math_sqrt_f32(float x);
 
+/* floor(sqrt(x)) for every 64-bit x, exact; integer arithmetic only. */
+uint64_t math_isqrt_u64(uint64_t x);
+
 /*
  * Trigonometric functions of an angle in radians. Accurate for every finite
  * argument (exact argument reduction); NaN for an infinite or NaN argument.

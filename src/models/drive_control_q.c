@@ -58,27 +58,14 @@ static int dc_sign(int64_t x) {
 }
 
 /*
- * round(sqrt(x)) for every x < 2^63, by the digit-by-digit method: at most
- * 31 + 32 loop passes, each a compare, a subtraction and shifts. After the
- * main loop root = floor(sqrt(x)) and rem = x - root^2; the root rounds up
- * when rem > root, since (root + 1/2)^2 = root^2 + root + 1/4.
+ * round(sqrt(x)) for every x < 2^63: the exact floor root (math_isqrt_u64,
+ * a few dozen integer operations instead of up to 31 + 32 loop passes),
+ * then rem = x - root^2 (below 2^33); the root rounds up when rem > root,
+ * since (root + 1/2)^2 = root^2 + root + 1/4.
  */
 static uint64_t dc_isqrt_round_u64(uint64_t x) {
-    uint64_t rem = x;
-    uint64_t root = 0u;
-    uint64_t bit = (uint64_t)1 << 62;
-    while (bit > rem) {
-        bit >>= 2;
-    }
-    while (bit != 0u) {
-        if (rem >= root + bit) {
-            rem -= root + bit;
-            root = (root >> 1) + bit;
-        } else {
-            root >>= 1;
-        }
-        bit >>= 2;
-    }
+    uint64_t root = math_isqrt_u64(x);
+    uint64_t rem = x - root * root;
     return (rem > root) ? root + 1u : root;
 }
 

@@ -53,7 +53,11 @@
  *
  * (the identity is kept apart so that the small coefficients keep their
  * precision). e^(j phi) comes from its Taylor series (|phi| <= 0.25 rad,
- * truncation below 1e-9). Integrating the rotor in rotor coordinates keeps
+ * truncation below 1e-9); at steps long enough for the angle at 512 rad/s
+ * to exceed 0.25 rad (beyond 244 us with p = 2: the averaged layer's
+ * 800 us frame) the series is taken at phi / 2^k and squared k times,
+ * e^(j phi) = (e^(j phi / 2^k))^(2^k), with the least such k (0 at 100 us,
+ * where the step is unchanged). Integrating the rotor in rotor coordinates keeps
  * the slip frequency exact: the steady state at stator frequency f is that
  * of the continuous machine at f (1 + O((2 pi f h)^2 / 12)) with the slip
  * unchanged, which a stationary-frame trapezoid would not give near
@@ -110,6 +114,7 @@
 /* Largest rotor angle per step at full-scale speed for the series of e^(j phi) [rad]. */
 #define INDUCTION_MOTOR_PHI_MAX_RAD 0.25
 
+
 /* Machine parameters: star-equivalent, per phase, rotor referred to the stator. */
 typedef struct {
     double rs_ohm;       /* [ohm] stator resistance */
@@ -153,6 +158,7 @@ typedef struct {
     double n_ss, n_sr, n_rs, n_rr; /* [-] N - I, right-hand side */
     double q_ss, q_sr, q_rs, q_rr; /* [-] M^-1 - I, solve */
     double phi_per_w;              /* [rad per rad/s] p h */
+    uint32_t rot_squarings;        /* [-] k: the series at phi / 2^k, squared k times */
     double te_per_cross;           /* [N m / Wb^2] (3/2) p Lm / D */
     double dw_per_t;               /* [rad/s per N m] h / (2 J) */
     double eps_per_w;              /* [1 per rad/s] h k_drag / J */
@@ -325,8 +331,9 @@ typedef struct {
 
 /*
  * As the float init, plus INDUCTION_MOTOR_ERR_RANGE when a constant does not
- * fit its format (a rotor angle per step above INDUCTION_MOTOR_PHI_MAX_RAD at
- * 512 rad/s, or a coefficient of 2^30 or more).
+ * fit its format (a rotor angle per step of 1 rad or more at 512 rad/s,
+ * beyond the Q31 angle: h >= 977 us with p = 2; or a coefficient of 2^30 or
+ * more).
  */
 induction_motor_status induction_motor_init_q(induction_motor_q *m, const induction_motor_params *p,
                                               const propeller_model *prop, double step_s);

@@ -5,6 +5,7 @@
  */
 #include <stddef.h>
 
+#include "models/drive_units.h"
 #include "models/induction_motor.h"
 
 /* True for a finite value: x - x is 0 for finite x and NaN for an infinity or a NaN. */
@@ -79,6 +80,14 @@ induction_motor_status induction_motor_coefs_f64(induction_motor_coefs *c,
     c->a_rr = ls / d;
     im_solve_coefs(c);
     c->phi_per_w = pp * step_s;
+    /* The least k with the angle at the fixed twin's full-scale speed (every
+     * twin's bound) / 2^k within the series' range. */
+    double range = INDUCTION_MOTOR_PHI_MAX_RAD;
+    c->rot_squarings = 0u;
+    while ((c->rot_squarings < 8u) && (c->phi_per_w * DRIVE_BASE_SPEED_RADPS > range)) {
+        range *= 2.0;
+        c->rot_squarings++;
+    }
     c->te_per_cross = 1.5 * pp * c->a_sr;
     c->k_drag = (prop != NULL) ? prop->k_drag : 0.0;
     c->j_total_kgm2 = p->j_rotor_kgm2 + ((prop != NULL) ? prop->inertia_kgm2 : 0.0);

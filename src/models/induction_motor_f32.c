@@ -20,6 +20,20 @@ static void im_rotation_f32(float phi, float *c1, float *s) {
     *s = phi + phi * p2 * ((-1.0f / 6.0f) + p2 * ((1.0f / 120.0f) - p2 * (1.0f / 5040.0f)));
 }
 
+/* Any angle of the step: halvings, the series, squarings, as in the double twin. */
+static void im_rotation_long_f32(float phi, uint32_t k, float *c1, float *s) {
+    float ph = phi;
+    for (uint32_t i = 0u; i < k; i++) {
+        ph *= 0.5f;
+    }
+    im_rotation_f32(ph, c1, s);
+    for (uint32_t i = 0u; i < k; i++) {
+        const float c = *c1;
+        *c1 = 2.0f * c + (c * c - *s * *s);
+        *s = 2.0f * (*s + *s * c);
+    }
+}
+
 static float im_load_f32(const induction_motor_f32 *m, float w) {
     return (m->prop != NULL) ? -m->load_factor * propeller_drag_torque_f32(m->prop, w) : 0.0f;
 }
@@ -117,7 +131,8 @@ void induction_motor_step_f32(induction_motor_f32 *m, const induction_motor_in_f
         bs[k] = m->psi_s[k] + (m->n_ss * m->psi_s[k] + m->n_sr * m->psi_r[k] + m->h * v[k]);
         rr[k] = m->psi_r[k] + (m->n_rs * m->psi_s[k] + m->n_rr * m->psi_r[k]);
     }
-    im_rotation_f32(m->phi_per_w * (m->w + 0.5f * (m->w - m->w_prev)), &c1, &s);
+    im_rotation_long_f32(m->phi_per_w * (m->w + 0.5f * (m->w - m->w_prev)), m->c.rot_squarings,
+                         &c1, &s);
     br[0] = rr[0] + (c1 * rr[0] - s * rr[1]);
     br[1] = rr[1] + (c1 * rr[1] + s * rr[0]);
     for (int k = 0; k < 2; k++) {

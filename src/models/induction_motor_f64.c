@@ -22,6 +22,24 @@ static void im_rotation_f64(double phi, double *c1, double *s) {
     *s = phi + phi * p2 * ((-1.0 / 6.0) + p2 * ((1.0 / 120.0) - p2 * (1.0 / 5040.0)));
 }
 
+/*
+ * e^(j phi) - 1 for any angle of the step: the series at phi / 2^k (exact
+ * halvings), then k squarings, (1 + c1 + j s)^2 = 1 + (2 c1 + c1^2 - s^2)
+ * + j 2 s (1 + c1). k = 0 at the drive's 100 us: the series alone.
+ */
+static void im_rotation_long_f64(double phi, uint32_t k, double *c1, double *s) {
+    double ph = phi;
+    for (uint32_t i = 0u; i < k; i++) {
+        ph *= 0.5;
+    }
+    im_rotation_f64(ph, c1, s);
+    for (uint32_t i = 0u; i < k; i++) {
+        const double c = *c1;
+        *c1 = 2.0 * c + (c * c - *s * *s);
+        *s = 2.0 * (*s + *s * c);
+    }
+}
+
 static double im_load_f64(const induction_motor_f64 *m, double w) {
     return (m->prop != NULL) ? -propeller_drag_torque_f64(m->prop, w) : 0.0;
 }
@@ -85,7 +103,8 @@ void induction_motor_step_f64(induction_motor_f64 *m, const induction_motor_in_f
         bs[k] = m->psi_s[k] + (c->n_ss * m->psi_s[k] + c->n_sr * m->psi_r[k] + c->h_s * v[k]);
         rr[k] = m->psi_r[k] + (c->n_rs * m->psi_s[k] + c->n_rr * m->psi_r[k]);
     }
-    im_rotation_f64(c->phi_per_w * (m->w + 0.5 * (m->w - m->w_prev)), &c1, &s);
+    im_rotation_long_f64(c->phi_per_w * (m->w + 0.5 * (m->w - m->w_prev)), c->rot_squarings,
+                         &c1, &s);
     br[0] = rr[0] + (c1 * rr[0] - s * rr[1]);
     br[1] = rr[1] + (c1 * rr[1] + s * rr[0]);
     for (int k = 0; k < 2; k++) {

@@ -113,7 +113,8 @@ induction_motor_status induction_motor_init_q(induction_motor_q *m, const induct
     if (st != INDUCTION_MOTOR_OK) {
         return st;
     }
-    if ((t.c.phi_per_w * DRIVE_BASE_SPEED_RADPS > INDUCTION_MOTOR_PHI_MAX_RAD) || !im_rows_q(&t)) {
+    /* The Q31 angle holds |phi| < 1 rad; the squarings take it to any such angle. */
+    if (!(t.c.phi_per_w * DRIVE_BASE_SPEED_RADPS < 1.0) || !im_rows_q(&t)) {
         return INDUCTION_MOTOR_ERR_RANGE;
     }
     induction_motor_reset_q(&t);

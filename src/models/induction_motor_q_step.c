@@ -33,9 +33,10 @@ static void im_clarke_q(induction_motor_q *m, const induction_motor_in_q *in, q3
 }
 
 /*
- * e^(j phi) - 1 = c1 + j s in Q31 for phi in Q31 [rad], |phi| <= 0.25 (the
- * init check): Horner forms of the Taylor series as in the float twins.
- * Every intermediate stays below 0.51 in magnitude, so nothing saturates;
+ * e^(j phi) - 1 = c1 + j s in Q31 for phi in Q31 [rad], |phi| <= 0.25
+ * (after the halvings of im_rotation_long_q): Horner forms of the Taylor
+ * series as in the float twins. Every intermediate stays below 0.51 in
+ * magnitude, so nothing saturates;
  * the rounding errors total a few LSB of Q31.
  */
 static void im_rotation_q(q31_t phi, q31_t *c1, q31_t *s) {
@@ -49,9 +50,27 @@ static void im_rotation_q(q31_t phi, q31_t *c1, q31_t *s) {
 }
 
 /*
+ * Any angle of the step (|phi| < 1 rad, the init check): the series at
+ * phi / 2^k (rounding shift), then k squarings in Q31,
+ * c1' = 2 c1 + c1^2 - s^2, s' = 2 (s + s c1). |c1| <= 1 - cos 1 < 0.46 and
+ * |s| <= sin 1 < 0.85 at every stage, so nothing saturates (counted if it
+ * did). k = 0 at the drive's 100 us: the series alone.
+ */
+static void im_rotation_long_q(induction_motor_q *m, q31_t phi, q31_t *c1, q31_t *s) {
+    const uint32_t k = m->c.rot_squarings;
+    im_rotation_q(fp_shr_round_i32(phi, k), c1, s);
+    for (uint32_t i = 0u; i < k; i++) {
+        const int64_t cc = fp_shr_round_i64((int64_t)*c1 * *c1 - (int64_t)*s * *s, 31u);
+        const int64_t sc = fp_shr_round_i64((int64_t)*s * *c1, 31u);
+        *c1 = fp_sat_cnt_q31(2 * (int64_t)*c1 + cc, &m->sat_count);
+        *s = fp_sat_cnt_q31(2 * ((int64_t)*s + sc), &m->sat_count);
+    }
+}
+
+/*
  * The rotor angle of this step, Q31 [rad], from the mid-step speed
  * w + (w - w_prev) / 2 (Q31 of 512 rad/s, saturated, counted) and the
- * constant p h 512 rad/s <= 0.25.
+ * constant p h 512 rad/s < 1.
  */
 static q31_t im_phi_q(induction_motor_q *m) {
     const int64_t dw = (int64_t)m->w - (int64_t)m->w_prev;
@@ -61,7 +80,8 @@ static q31_t im_phi_q(induction_motor_q *m) {
 
 /*
  * The flux update: histories, rotation, solve. Fluxes are Q31 of 8 Wb; the
- * rotation products c1 x, s x are below 2^60 each (|c1|, |s| <= 2^29).
+ * rotation products c1 x, s x are below 2^61 each (|c1|, |s| < 0.85 of
+ * Q31), their sums below 2^62.
  */
 static void im_flux_q(induction_motor_q *m, const q31_t v[2]) {
     uint32_t *sat = &m->sat_count;
@@ -72,7 +92,7 @@ static void im_flux_q(induction_motor_q *m, const q31_t v[2]) {
         bs[k] = fp_sat_cnt_q31((int64_t)m->psi_s[k] + ds, sat);
         rr[k] = fp_sat_cnt_q31((int64_t)m->psi_r[k] + dr, sat);
     }
-    im_rotation_q(im_phi_q(m), &c1, &s);
+    im_rotation_long_q(m, im_phi_q(m), &c1, &s);
     br[0] = fp_sat_cnt_q31(
         (int64_t)rr[0] + fp_shr_round_i64((int64_t)c1 * rr[0] - (int64_t)s * rr[1], 31u), sat);
     br[1] = fp_sat_cnt_q31(

@@ -469,7 +469,7 @@ static void test_options(void) {
     config_small(&c);
     c.inverter = DRIVE_INVERTER_AVERAGED;
     check_option(&c, "averaged inverter", ref_i);
-    UT_EQ_INT(exec_fast_steps(&ex), 80); /* at the 100 us motor frame */
+    UT_EQ_INT(exec_fast_steps(&ex), 10); /* at the controller's 800 us frame */
 
     UT_TEST("averaged inverter: with one step per motor frame, staggering has no half frame "
             "to delay by and gives the same bits as the zero-order hold");

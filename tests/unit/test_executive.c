@@ -30,6 +30,7 @@ typedef struct {
     double settle_s;       /* last time outside the 2 % band */
     double mean_err_pct;   /* mean error over the last 0.5 s */
     double final_x[VESSEL_NSTATES];
+    double final_rpm;
     uint32_t saturations;
 } step_result;
 
@@ -63,6 +64,7 @@ static void run_step(const exec_config *cfg, step_result *r) {
     for (int i = 0; i < VESSEL_NSTATES; i++) {
         r->final_x[i] = ex.x[i];
     }
+    r->final_rpm = drive_shaft_radps(&ex.drive) * RPM_PER_RADPS;
     r->saturations = ex.count.saturations;
 }
 
@@ -96,6 +98,33 @@ void suite_executive(void) {
     UT_CHECK(ex.count.e_batt_j > ex.count.e_mech_j && ex.count.e_mech_j > 0.0);
     ut_info("battery %.1f J, shaft %.1f J (%.1f %%)", ex.count.e_batt_j, ex.count.e_mech_j,
             100.0 * ex.count.e_mech_j / ex.count.e_batt_j);
+    const double e_batt_sw = ex.count.e_batt_j;
+
+    UT_TEST("averaged layer (stage and motor at the controller's 800 us frame): the same "
+            "start-up criteria; 2 s is 2500 frames, motor and controller steps and 20 slow "
+            "steps; the final shaft speed within 0.2 % of the switching run's; the battery "
+            "delivers the shaft's energy plus losses (within 1 % of the switching run's)");
+    static step_result c;
+    exec_config avg = cfg;
+    avg.inverter = DRIVE_INVERTER_AVERAGED;
+    run_step(&avg, &c);
+    ut_info("peak %.1f rpm, settled at %.3f s, steady error %.3f %%, final %.2f rpm "
+            "(switching %.2f rpm)", c.peak_rpm, c.settle_s, c.mean_err_pct, c.final_rpm,
+            a.final_rpm);
+    UT_CHECK(c.peak_rpm <= 1050.0);
+    UT_CHECK(c.settle_s <= SETTLE_LIMIT_S);
+    UT_CHECK(math_fabs_f64(c.mean_err_pct) <= 0.5);
+    UT_CHECK(math_fabs_f64(c.final_rpm - a.final_rpm) <= 0.002 * a.final_rpm);
+    UT_CHECK(ex.count.e_batt_j > ex.count.e_mech_j && ex.count.e_mech_j > 0.0);
+    UT_CHECK(math_fabs_f64(ex.count.e_batt_j / e_batt_sw - 1.0) <= 0.01);
+    ut_info("battery %.1f J (switching %.1f J), shaft %.1f J", ex.count.e_batt_j, e_batt_sw,
+            ex.count.e_mech_j);
+    UT_EQ_INT(c.saturations, 0);
+    UT_EQ_INT(ex.count.fast, 2500);
+    UT_EQ_INT(ex.count.medium, 2500);
+    UT_EQ_INT(ex.count.control, 2500);
+    UT_EQ_INT(ex.count.slow, 20);
+    UT_EQ_INT(exec_overruns(&ex), 0);
 
     UT_TEST("determinism: the same run twice gives the same bits");
     static step_result b;

@@ -4,13 +4,18 @@
  * count, the modulator's step range of [100 ns, 1 ms], the power stage's
  * initial DC-link voltage range [0, 1024) V), and the accepted limits. Its
  * step is tested against the switching path in test_power_stage.c.
+ * The quasi-static stage: set-up, the DC-link constants against their
+ * closed forms, and its step against the exponential bus, the settled bus
+ * and the lossless power balance, both twins.
  */
 #include <stddef.h>
 
+#include "math/umath.h"
 #include "models/inverter_avg.h"
 #include "ut.h"
 
 void suite_inverter_avg(void);
+static void suite_inverter_qs(void);
 
 /* Static: the instances hold a whole power stage, kept off the small target stacks. */
 static inverter_avg_q inv_q;
@@ -54,4 +59,103 @@ void suite_inverter_avg(void) {
     UT_EQ_INT(init_both(false, pp, sp, 128000u, INVERTER_AVG_SUB_MAX, 0.0), INVERTER_AVG_OK);
     UT_EQ_INT(inv_q.n_sub, 64);
     UT_EQ_INT(inv_f.n_sub, 64);
+    suite_inverter_qs();
+}
+
+/* ---- The quasi-static stage ---------------------------------------------- */
+
+#define QS_FRAME_NS 800000u
+#define QS_C_DC 470e-6
+#define QS_G 1.67    /* [S] about the pack's companion */
+#define QS_B 1008.0  /* [A] e = b / G = 603.6 V */
+
+static inverter_qs_q qs_q;
+static inverter_qs_f32 qs_f;
+
+static double qs_v_q(int32_t x) { return (double)x / 268435456.0 * 1024.0; }
+
+/* The DC references of a zero frequency at phase 0: r = (0, -0.866, 0.866) m. */
+static void qs_command(float m) {
+    pwm_command_inc_q(&qs_q.mod, (q15_t)(m * 32767.0f), 0u);
+    pwm_command_inc_f32(&qs_f.mod, m, 0u);
+}
+
+static void suite_inverter_qs(void) {
+    const pwm_params *pp = &pwm_params_default;
+    inverter_qs_bus_q bq;
+    inverter_qs_bus_f32 bf;
+
+    UT_TEST("quasi-static init, both twins: NULL is ERR_NULL, a 50 ns frame ERR_PWM; the bus "
+            "starts clamped to [0, 1023] V");
+    UT_EQ_INT(inverter_qs_init_q(NULL, pp, QS_FRAME_NS, 600.0), INVERTER_AVG_ERR_NULL);
+    UT_EQ_INT(inverter_qs_init_f32(&qs_f, NULL, QS_FRAME_NS, 600.0), INVERTER_AVG_ERR_NULL);
+    UT_EQ_INT(inverter_qs_init_q(&qs_q, pp, 50u, 600.0), INVERTER_AVG_ERR_PWM);
+    UT_EQ_INT(inverter_qs_init_f32(&qs_f, pp, 50u, 600.0), INVERTER_AVG_ERR_PWM);
+    UT_EQ_INT(inverter_qs_init_q(&qs_q, pp, QS_FRAME_NS, -5.0), INVERTER_AVG_OK);
+    UT_EQ_INT(qs_q.v_dc, 0);
+    UT_EQ_INT(inverter_qs_init_f32(&qs_f, pp, QS_FRAME_NS, 2000.0), INVERTER_AVG_OK);
+    UT_NEAR((double)qs_f.v_dc, 1023.0, 0.0);
+
+    UT_TEST("bus constants, both twins: alpha = 1 - exp(-T G / C), beta = alpha / G, e = b / G "
+            "at 800 us; open (G = 0): alpha 0, beta T / C; a negative G and e above 1023 V count");
+    UT_EQ_INT(inverter_qs_battery_q(&qs_q, QS_C_DC, QS_G, QS_B, &bq), 0);
+    UT_EQ_INT(inverter_qs_battery_f32(&qs_f, QS_C_DC, QS_G, QS_B, &bf), 0);
+    const double alpha = 1.0 - math_exp_f64(-800e-6 * QS_G / QS_C_DC);
+    UT_NEAR((double)bq.alpha / 2147483648.0, alpha, 1e-9);
+    UT_NEAR((double)bf.alpha, alpha, 1e-7);
+    UT_NEAR((double)bq.beta / 16777216.0 * 4.0, alpha / QS_G, 1e-6);
+    UT_NEAR((double)bf.beta_ohm, alpha / QS_G, 1e-6);
+    UT_NEAR(qs_v_q(bq.e), QS_B / QS_G, 1e-5);
+    UT_EQ_INT(inverter_qs_battery_f32(&qs_f, QS_C_DC, 0.0, 0.0, &bf), 0);
+    UT_NEAR((double)bf.alpha, 0.0, 0.0);
+    UT_NEAR((double)bf.beta_ohm, 800e-6 / QS_C_DC, 1e-6);
+    UT_EQ_INT(inverter_qs_battery_q(&qs_q, QS_C_DC, -1.0, 0.0, &bq), 1);
+    UT_EQ_INT(bq.alpha, 0);
+    UT_EQ_INT(inverter_qs_battery_q(&qs_q, QS_C_DC, 1.0, 2000.0, &bq), 1);
+    UT_NEAR(qs_v_q(bq.e), 1023.0, 1e-5);
+
+    UT_TEST("step, both twins, with no load current: the bus approaches e by (1 - alpha) per "
+            "frame from 500 V; m = 0 gives zero terminal voltages");
+    UT_EQ_INT(inverter_qs_init_q(&qs_q, pp, QS_FRAME_NS, 500.0), INVERTER_AVG_OK);
+    UT_EQ_INT(inverter_qs_init_f32(&qs_f, pp, QS_FRAME_NS, 500.0), INVERTER_AVG_OK);
+    (void)inverter_qs_battery_q(&qs_q, QS_C_DC, QS_G, QS_B, &bq);
+    (void)inverter_qs_battery_f32(&qs_f, QS_C_DC, QS_G, QS_B, &bf);
+    double v_ref = 500.0;
+    for (int k = 0; k < 3; k++) {
+        inverter_qs_step_q(&qs_q, &bq, 0, 0);
+        inverter_qs_step_f32(&qs_f, &bf, 0.0f, 0.0f);
+        v_ref += alpha * (QS_B / QS_G - v_ref);
+        UT_NEAR(qs_v_q(qs_q.v_dc), v_ref, 1e-4);
+        UT_NEAR((double)qs_f.v_dc, v_ref, 1e-3);
+    }
+    UT_EQ_INT(qs_q.u[0], 0);
+    UT_NEAR((double)qs_f.u[1], 0.0, 0.0);
+
+    UT_TEST("step, both twins, m = 1 at zero frequency, currents (0, -50, 50) A held: i_dc = "
+            "43.3 A, the bus settles at e - i_dc / G, u_b = -0.433 v_dc, v_dc i_dc = sum u i; "
+            "open, the capacitor loses T i_dc / C in one frame");
+    qs_command(1.0f);
+    const int32_t i50 = (int32_t)(50.0 / 256.0 * 268435456.0);
+    for (int k = 0; k < 40; k++) {
+        inverter_qs_step_q(&qs_q, &bq, 0, -i50);
+        inverter_qs_step_f32(&qs_f, &bf, 0.0f, -50.0f);
+    }
+    const double i_dc = 25.0 * 1.7320508075688772;
+    const double v_set = QS_B / QS_G - i_dc / QS_G;
+    UT_NEAR(qs_v_q(qs_q.i_dc) / 4.0, i_dc, 1e-2); /* m = 32767 / 32768, table sine */
+    UT_NEAR((double)qs_f.i_dc, i_dc, 2e-3);
+    UT_NEAR(qs_v_q(qs_q.v_dc), v_set, 5e-3); /* Q15 cos 0 = 1 - 2^-15 in the turn */
+    UT_NEAR((double)qs_f.v_dc, v_set, 2e-3);
+    UT_NEAR((double)qs_f.u[1], -0.25 * 1.7320508075688772 * (double)qs_f.v_dc, 2e-3);
+    UT_NEAR((double)qs_f.v_dc * (double)qs_f.i_dc, (double)qs_f.u[1] * -50.0 +
+            (double)(-qs_f.u[0] - qs_f.u[1]) * 50.0, 0.05);
+    (void)inverter_qs_battery_q(&qs_q, QS_C_DC, 0.0, 0.0, &bq);
+    (void)inverter_qs_battery_f32(&qs_f, QS_C_DC, 0.0, 0.0, &bf);
+    const double v0 = (double)qs_f.v_dc;
+    inverter_qs_step_q(&qs_q, &bq, 0, -i50);
+    inverter_qs_step_f32(&qs_f, &bf, 0.0f, -50.0f);
+    UT_NEAR((double)qs_f.v_dc, v0 - 800e-6 * i_dc / QS_C_DC, 2e-3);
+    UT_NEAR(qs_v_q(qs_q.v_dc), v0 - 800e-6 * i_dc / QS_C_DC, 2e-2);
+    UT_EQ_INT(qs_q.sat_count, 0);
+    UT_EQ_INT(qs_f.sat_count, 0);
 }

@@ -122,6 +122,21 @@ static bool sqrt_correct_f32(float x, float r) {
     return lo < mid && mid < hi;
 }
 
+/* math_isqrt_u64(x) = q with q^2 <= x < (q + 1)^2, the squares formed in 128 bits. */
+static bool isqrt_ok(uint64_t x) {
+    uint64_t q = math_isqrt_u64(x);
+    uint64_t lhi;
+    uint64_t llo;
+    uint64_t hhi;
+    uint64_t hlo;
+    if (q > 0xffffffffu) {
+        return false;
+    }
+    square_u128(q, &lhi, &llo);
+    square_u128(q + 1u, &hhi, &hlo);
+    return !less_u128(0u, x, lhi, llo) && less_u128(0u, x, hhi, hlo);
+}
+
 static void test_sqrt(void) {
     UT_TEST("sqrt: perfect squares k^2 give k exactly (k up to 2^26)");
     bool ok = true;
@@ -154,6 +169,24 @@ static void test_sqrt(void) {
         double x = math_from_bits_f64(0x3ff0000000000000u + (v >> 11)); /* [1, 4) */
         float xf = math_from_bits_f32(0x3f800000u + (uint32_t)(v >> 40));
         ok = ok && sqrt_correct_f64(x, math_sqrt_f64(x)) && sqrt_correct_f32(xf, math_sqrt_f32(xf));
+    }
+    UT_CHECK(ok);
+
+    UT_TEST("isqrt_u64: the floor root, q^2 <= x < (q + 1)^2 in exact 128-bit arithmetic, at "
+            "0..4, around k^2 for pseudo-random k of every width, at 2^62, 2^63 and 2^64 - 1");
+    static const uint64_t edges[] = {0u, 1u, 2u, 3u, 4u, 0x4000000000000000u,
+                                     0x8000000000000000u, 0xfffffffe00000000u,
+                                     0xfffffffe00000001u, 0xffffffffffffffffu};
+    ok = true;
+    for (unsigned i = 0u; i < sizeof edges / sizeof edges[0]; i++) {
+        ok = ok && isqrt_ok(edges[i]);
+    }
+    for (int i = 0; i < 2000; i++) {
+        uint64_t v = lcg_next(&state);
+        uint64_t k = v >> (32 + (i % 32)); /* every width up to 32 bits */
+        uint64_t k2 = k * k;
+        ok = ok && isqrt_ok(k2) && isqrt_ok(k2 + k) && isqrt_ok(k2 + 2u * k) &&
+             (k == 0u || isqrt_ok(k2 - 1u)) && isqrt_ok(v >> (i % 64));
     }
     UT_CHECK(ok);
 
