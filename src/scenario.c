@@ -124,21 +124,19 @@ static bool read_value(parser *p, const parse_token *field, const char *text, si
     }
     double v = 0.0;
     size_t used = 0;
-    if (!parse_number(text, n, &v, &used)) {
-        return fail(p, field, "expected a number in %s%s, got '%.*s'", rule->unit,
+    bool number = parse_number(text, n, &v, &used);
+    if (number && used != n) {
+        number = rule->angle && parse_word_is(text + used, n - used, "deg");
+        v *= DEG_TO_RAD;
+    }
+    if (!number) {
+        return fail(p, field, "expected a number%s%s%s, got '%.*s'",
+                    (rule->unit[0] != '\0') ? " in " : "", rule->unit,
                     rule->angle ? " (or with the suffix deg)" : "", (int)n, text);
     }
-    if (used != n) {
-        if (rule->angle && parse_word_is(text + used, n - used, "deg")) {
-            v *= DEG_TO_RAD;
-        } else {
-            return fail(p, field, "expected a number in %s%s, got '%.*s'", rule->unit,
-                        rule->angle ? " (or with the suffix deg)" : "", (int)n, text);
-        }
-    }
     if (!(v >= rule->min && v <= rule->max)) {
-        return fail(p, field, "value %g %s out of range [%g, %g]", v, rule->unit, rule->min,
-                    rule->max);
+        return fail(p, field, "value %g%s%s out of range [%g, %g]", v,
+                    (rule->unit[0] != '\0') ? " " : "", rule->unit, rule->min, rule->max);
     }
     *out = v;
     return true;
