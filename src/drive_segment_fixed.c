@@ -340,9 +340,7 @@ __attribute__((noinline)) static void publish_averaged(drive_segment *d, bool sl
             d->bat_in_force = d->bat_next;
             d->battery_new = false;
         }
-        if (d->fault_new) {
-            faults_apply(d);
-        }
+        slow_boundary_apply(d);
     }
     drive_frame_sums *m = &d->medium_in;
     for (int x = 0; x < 2; x++) {
