@@ -1,6 +1,6 @@
 /*
- * Writes src/fixedpoint/wavetable_data.c, the tables of the sine and
- * triangle lookups of src/fixedpoint/wavetable.h. It is the only way that
+ * Writes src/fixedpoint/wavetable_data.c, the tables of the sine lookups
+ * of src/fixedpoint/wavetable.h (the triangle is computed, not tabled). It is the only way that
  * file is made; the file is committed so that the firmware build needs no
  * host math library.
  *
@@ -82,8 +82,8 @@ static long double tie_distance_float(long double s, float *rounded) {
     return 0.5L - fabsl(s - (long double)f) / spacing;
 }
 
-static int build_tables(int32_t *sine_q23, int32_t *tri_q23, float *sine_f32, float *tri_f32,
-                        long double *margin_q23, long double *margin_f32) {
+static int build_tables(int32_t *sine_q23, float *sine_f32, long double *margin_q23,
+                        long double *margin_f32) {
     uint32_t k;
 
     *margin_q23 = 1.0L;
@@ -104,13 +104,6 @@ static int build_tables(int32_t *sine_q23, int32_t *tri_q23, float *sine_f32, fl
         if (sine_f32[k] == 0.0f) {
             sine_f32[k] = 0.0f; /* no negative zero in the text */
         }
-        if (k <= WT_TABLE_SIZE / 2u) {
-            tri_q23[k] = -8388352 + 32767 * (int32_t)k;
-            tri_f32[k] = -1.0f + (float)k / 256.0f;
-        } else {
-            tri_q23[k] = 8388352 - 32767 * (int32_t)(k - WT_TABLE_SIZE / 2u);
-            tri_f32[k] = 3.0f - (float)k / 256.0f;
-        }
     }
     /* Entries at exact values (0, +-1) have distance 0.5 and do not limit the margin. */
     return *margin_q23 >= TIE_MARGIN && *margin_f32 >= TIE_MARGIN;
@@ -118,7 +111,7 @@ static int build_tables(int32_t *sine_q23, int32_t *tri_q23, float *sine_f32, fl
 
 static void emit_header(long double margin_q23, long double margin_f32) {
     emit("/*\n"
-         " * Tables of the sine and triangle lookups of wavetable.h. This file is\n"
+         " * Tables of the sine lookups of wavetable.h. This file is\n"
          " * written by tools/gen_wavetables.c and never edited by hand; to remake it:\n"
          " *\n"
          " *     make build/tools/gen_wavetables\n"
@@ -130,13 +123,8 @@ static void emit_header(long double margin_q23, long double margin_f32) {
          " * Entry k, 0 <= k <= %u, belongs to phase k * 2^%u (angle 2 pi k / %u);\n"
          " * entry %u equals entry 0, the guard that lets the last segment\n"
          " * interpolate towards the wrap without a test.\n"
-         " *   wt_sine_table_q23[k]     = round(256 * 32767 * sin(2 pi k / %u))\n"
-         " *   wt_triangle_table_q23[k] = 256 * tri(k), exact integers:\n"
-         " *                              -8388352 + 32767 * k for k <= %u,\n"
-         " *                              8388352 - 32767 * (k - %u) above\n"
-         " *   wt_sine_table_f32[k]     = sin(2 pi k / %u) rounded to the nearest float\n"
-         " *   wt_triangle_table_f32[k] = -1 + k / 256 for k <= %u, 3 - k / 256 above\n"
-         " *                              (exact floats)\n"
+         " *   wt_sine_table_q23[k] = round(256 * 32767 * sin(2 pi k / %u))\n"
+         " *   wt_sine_table_f32[k] = sin(2 pi k / %u) rounded to the nearest float\n"
          " * round() is to nearest. Each sine is evaluated in long double after an\n"
          " * exact integer reduction of the phase to an angle of at most pi/4 (by\n"
          " * quadrant and reflection), so the argument carries no reduction error.\n"
@@ -147,8 +135,7 @@ static void emit_header(long double margin_q23, long double margin_f32) {
          " */\n"
          "#include \"fixedpoint/wavetable.h\"\n",
          WT_TABLE_SIZE, 32u - WT_INDEX_BITS, WT_TABLE_SIZE, WT_TABLE_SIZE, WT_TABLE_SIZE,
-         WT_TABLE_SIZE / 2u, WT_TABLE_SIZE / 2u, WT_TABLE_SIZE, WT_TABLE_SIZE / 2u,
-         margin_q23, margin_f32);
+         WT_TABLE_SIZE, margin_q23, margin_f32);
 }
 
 static void emit_int_table(const char *name, const int32_t *table) {
@@ -228,9 +215,7 @@ static int check_file(const char *path) {
 
 int main(int argc, char **argv) {
     static int32_t sine_q23[TABLE_LEN];
-    static int32_t tri_q23[TABLE_LEN];
     static float sine_f32[TABLE_LEN];
-    static float tri_f32[TABLE_LEN];
     long double margin_q23;
     long double margin_f32;
     int check = argc == 3 && strcmp(argv[1], "--check") == 0;
@@ -239,7 +224,7 @@ int main(int argc, char **argv) {
         fprintf(stderr, "usage: gen_wavetables [--check] FILE\n");
         return 2;
     }
-    if (!build_tables(sine_q23, tri_q23, sine_f32, tri_f32, &margin_q23, &margin_f32)) {
+    if (!build_tables(sine_q23, sine_f32, &margin_q23, &margin_f32)) {
         fprintf(stderr, "gen_wavetables: an entry lies within %Lg of a rounding tie "
                         "(Q23 margin %Lg, float margin %Lg)\n",
                 TIE_MARGIN, margin_q23, margin_f32);
@@ -247,8 +232,6 @@ int main(int argc, char **argv) {
     }
     emit_header(margin_q23, margin_f32);
     emit_int_table("wt_sine_table_q23", sine_q23);
-    emit_int_table("wt_triangle_table_q23", tri_q23);
     emit_float_table("wt_sine_table_f32", sine_f32);
-    emit_float_table("wt_triangle_table_f32", tri_f32);
     return check ? check_file(argv[2]) : write_file(argv[1]);
 }

@@ -14,7 +14,9 @@
  * table; the next WT_FRAC_BITS bits are the fraction f / 2^15 of the way
  * from entry k to entry k + 1; the lowest 7 bits are ignored. Each table has
  * WT_TABLE_SIZE + 1 entries: the last repeats the first, so segment 1023
- * interpolates towards the wrap without a test.
+ * interpolates towards the wrap without a test. The triangle needs no table:
+ * it is linear on each half turn, so its entries and their differences are
+ * computed (the same values, bit for bit, as a table of 256 tri(k)).
  *
  * Waveforms (Q15 outputs, the float twins are the same divided by 32767):
  *   sine:     32767 * sin(2 pi phase / 2^32);
@@ -26,9 +28,10 @@
  * the exactly rounded value round(32767 * w(phase)); each float output is
  * within 2^-15 of the exact w(phase) (w the unit waveform).
  *
- * Cost. A Q15 lookup is two loads, a subtraction, a multiplication, an
+ * Cost. A Q15 sine lookup is two loads, a subtraction, a multiplication, an
  * offset floor shift and a rounding shift; the float lookup is two loads, a
- * conversion and a multiply-add. No division, no branch.
+ * conversion and a multiply-add. No division. The triangle replaces the
+ * loads by a comparison and a multiply-add.
  */
 #ifndef UUV_WAVETABLE_H
 #define UUV_WAVETABLE_H
@@ -55,14 +58,19 @@
  *   wt_sine_table_q23[k]     = round(256 * 32767 * sin(2 pi k / 1024)):
  *                              Q15 with 8 more fraction bits (Q23 of the
  *                              Q15 waveform), |entry| <= 8388352.
- *   wt_triangle_table_q23[k] = 256 * tri(k * 2^22), exact integers.
  *   wt_sine_table_f32[k]     = sin(2 pi k / 1024) rounded to float.
- *   wt_triangle_table_f32[k] = tri(k * 2^22) / 32767, exact floats.
  */
 extern const int32_t wt_sine_table_q23[WT_TABLE_SIZE + 1u];
-extern const int32_t wt_triangle_table_q23[WT_TABLE_SIZE + 1u];
 extern const float wt_sine_table_f32[WT_TABLE_SIZE + 1u];
-extern const float wt_triangle_table_f32[WT_TABLE_SIZE + 1u];
+
+/*
+ * The triangle's knots, k = 0 .. 1024 (entry k at phase k 2^22):
+ * 256 tri(k) = -8388352 + 32767 k for k <= 512 and 8388352 - 32767 (k - 512)
+ * above (exact integers, |value| <= 8388352); tri(k) / 32767 = -1 + k / 256
+ * and 3 - k / 256 (exact floats).
+ */
+#define WT_TRI_KNOT_Q23 8388352 /* 256 * 32767 */
+#define WT_TRI_SLOPE_Q23 32767  /* change per segment, Q23 */
 
 /*
  * Linear interpolation in a Q23 table, rounded to Q15.
@@ -75,14 +83,17 @@ extern const float wt_triangle_table_f32[WT_TABLE_SIZE + 1u];
  * it at most 1 below), in [-8388353, 8388352], so adding 2^23 + 2^7 makes it
  * positive before the rounding shift, and the result is in [-32767, 32767].
  */
-static inline q15_t wt_interp_q15(const int32_t *table, uint32_t phase) {
-    uint32_t index = phase >> (32u - WT_INDEX_BITS);
+static inline q15_t wt_segment_q15(int32_t e0, int32_t e1, uint32_t phase) {
     int32_t frac = (int32_t)((phase >> WT_IGNORED_BITS) & ((1u << WT_FRAC_BITS) - 1u));
-    int32_t e0 = table[index];
-    int32_t step = fp_shr_floor_i32((table[index + 1u] - e0) * frac, WT_FRAC_BITS);
+    int32_t step = fp_shr_floor_i32((e1 - e0) * frac, WT_FRAC_BITS);
     uint32_t offset = (uint32_t)(e0 + step + (32768 << WT_ENTRY_EXTRA_BITS) +
                                  (1 << (WT_ENTRY_EXTRA_BITS - 1u)));
     return (q15_t)((int32_t)(offset >> WT_ENTRY_EXTRA_BITS) - 32768);
+}
+
+static inline q15_t wt_interp_q15(const int32_t *table, uint32_t phase) {
+    uint32_t index = phase >> (32u - WT_INDEX_BITS);
+    return wt_segment_q15(table[index], table[index + 1u], phase);
 }
 
 /*
@@ -108,9 +119,23 @@ static inline q15_t wt_cos_q15(uint32_t phase) {
     return wt_interp_q15(wt_sine_table_q23, phase + WT_PHASE_QUARTER);
 }
 
-/* The PWM carrier in Q15: -32767 at phase 0, +32767 at phase 2^31. */
+/*
+ * The PWM carrier in Q15: -32767 at phase 0, +32767 at phase 2^31. The
+ * interpolation of wt_interp_q15() between the knots above, which differ
+ * by +-32767 (within its bound of 51472).
+ */
 static inline q15_t wt_tri_q15(uint32_t phase) {
-    return wt_interp_q15(wt_triangle_table_q23, phase);
+    int32_t k = (int32_t)(phase >> (32u - WT_INDEX_BITS));
+    int32_t e0;
+    int32_t d;
+    if (k < (int32_t)(WT_TABLE_SIZE / 2u)) {
+        e0 = -WT_TRI_KNOT_Q23 + WT_TRI_SLOPE_Q23 * k;
+        d = WT_TRI_SLOPE_Q23;
+    } else {
+        e0 = WT_TRI_KNOT_Q23 - WT_TRI_SLOPE_Q23 * (k - (int32_t)(WT_TABLE_SIZE / 2u));
+        d = -WT_TRI_SLOPE_Q23;
+    }
+    return wt_segment_q15(e0, e0 + d, phase);
 }
 
 /* sin(2 pi phase / 2^32), within 2^-15 of the exact value. */
@@ -123,9 +148,19 @@ static inline float wt_cos_f32(uint32_t phase) {
     return wt_interp_f32(wt_sine_table_f32, phase + WT_PHASE_QUARTER);
 }
 
-/* The PWM carrier in [-1, 1]: -1 at phase 0, +1 at phase 2^31. */
+/*
+ * The PWM carrier in [-1, 1]: -1 at phase 0, +1 at phase 2^31. The
+ * interpolation of wt_interp_f32() between the knots above, whose
+ * difference is exactly +-1/256 in float.
+ */
 static inline float wt_tri_f32(uint32_t phase) {
-    return wt_interp_f32(wt_triangle_table_f32, phase);
+    uint32_t k = phase >> (32u - WT_INDEX_BITS);
+    float frac = (float)((phase >> WT_IGNORED_BITS) & ((1u << WT_FRAC_BITS) - 1u)) *
+                 (1.0f / 32768.0f);
+    if (k < WT_TABLE_SIZE / 2u) {
+        return (-1.0f + (float)k / 256.0f) + (1.0f / 256.0f) * frac;
+    }
+    return (3.0f - (float)k / 256.0f) + (-1.0f / 256.0f) * frac;
 }
 
 /*

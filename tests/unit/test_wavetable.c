@@ -144,8 +144,6 @@ static void test_tables(void) {
     uint32_t k;
     unsigned bad_sine = 0u;
     unsigned bad_sine_f = 0u;
-    unsigned bad_tri = 0u;
-    unsigned bad_tri_f = 0u;
 
     UT_TEST("tables: sine Q23 entry k = round(256*32767*sin(2 pi k/1024)) and f32 entry = "
             "(float)sin, for all 1025 entries (reference: own double sine)");
@@ -157,17 +155,52 @@ static void test_tables(void) {
     UT_EQ_INT(bad_sine, 0);
     UT_EQ_INT(bad_sine_f, 0);
 
-    UT_TEST("tables: triangle entries are the exact values 256*tri(k) and tri(k)/32767, "
-            "guards equal entry 0");
-    for (k = 0u; k <= WT_TABLE_SIZE; k++) {
-        int32_t j = (k <= WT_TABLE_SIZE / 2u) ? (int32_t)k : (int32_t)(WT_TABLE_SIZE - k);
-        bad_tri += (wt_triangle_table_q23[k] != -8388352 + 32767 * j) ? 1u : 0u;
-        bad_tri_f += (wt_triangle_table_f32[k] != -1.0f + (float)j / 256.0f) ? 1u : 0u;
-    }
-    UT_EQ_INT(bad_tri, 0);
-    UT_EQ_INT(bad_tri_f, 0);
+    UT_TEST("tables: the sine's guard entries equal entry 0");
     UT_EQ_INT(wt_sine_table_q23[WT_TABLE_SIZE], wt_sine_table_q23[0]);
     UT_CHECK(wt_sine_table_f32[WT_TABLE_SIZE] == wt_sine_table_f32[0]);
+}
+
+/*
+ * The triangle's knots as a table (256 tri(k) and tri(k) / 32767, exact),
+ * the reference of the computed lookups.
+ */
+static int32_t tri_table_q23[WT_TABLE_SIZE + 1u];
+static float tri_table_f32[WT_TABLE_SIZE + 1u];
+
+static void build_tri_tables(void) {
+    for (uint32_t k = 0u; k <= WT_TABLE_SIZE; k++) {
+        int32_t j = (k <= WT_TABLE_SIZE / 2u) ? (int32_t)k : (int32_t)(WT_TABLE_SIZE - k);
+        tri_table_q23[k] = -8388352 + 32767 * j;
+        tri_table_f32[k] = -1.0f + (float)j / 256.0f;
+    }
+}
+
+static void test_triangle_knots(void) {
+    unsigned bad = 0u;
+    unsigned bad_f = 0u;
+
+    build_tri_tables();
+    UT_TEST("triangle: the computed lookups equal the interpolation of a table of the exact "
+            "knots bit for bit, Q15 and f32: every fraction of 10 segments and every 61st "
+            "fraction of all 1024");
+    static const uint32_t segments[] = {0u, 1u, 255u, 256u, 511u, 512u, 513u, 767u, 1022u, 1023u};
+    for (uint32_t i = 0u; i < sizeof segments / sizeof segments[0]; i++) {
+        for (uint32_t f = 0u; f < (1u << WT_FRAC_BITS); f++) {
+            uint32_t phase = (segments[i] << (32u - WT_INDEX_BITS)) | (f << WT_IGNORED_BITS) |
+                             ((f * 37u) & 127u);
+            bad += (wt_tri_q15(phase) != wt_interp_q15(tri_table_q23, phase)) ? 1u : 0u;
+            bad_f += (wt_tri_f32(phase) != wt_interp_f32(tri_table_f32, phase)) ? 1u : 0u;
+        }
+    }
+    for (uint32_t k = 0u; k < WT_TABLE_SIZE; k++) {
+        for (uint32_t f = (k * 7u) % 61u; f < (1u << WT_FRAC_BITS); f += 61u) {
+            uint32_t phase = (k << (32u - WT_INDEX_BITS)) | (f << WT_IGNORED_BITS);
+            bad += (wt_tri_q15(phase) != wt_interp_q15(tri_table_q23, phase)) ? 1u : 0u;
+            bad_f += (wt_tri_f32(phase) != wt_interp_f32(tri_table_f32, phase)) ? 1u : 0u;
+        }
+    }
+    UT_EQ_INT(bad, 0);
+    UT_EQ_INT(bad_f, 0);
 }
 
 /*
@@ -201,7 +234,7 @@ static void test_interpolation(void) {
             "entries: every fraction of 10 segments, exact integer reference");
     for (i = 0u; i < sizeof segments / sizeof segments[0]; i++) {
         bad += interp_violations(wt_sine_table_q23, segments[i], 0u, 1u);
-        bad += interp_violations(wt_triangle_table_q23, segments[i], 0u, 1u);
+        bad += interp_violations(tri_table_q23, segments[i], 0u, 1u);
     }
     UT_EQ_INT(bad, 0);
 
@@ -210,7 +243,7 @@ static void test_interpolation(void) {
     bad = 0u;
     for (i = 0u; i < WT_TABLE_SIZE; i++) {
         bad += interp_violations(wt_sine_table_q23, i, i % 61u, 61u);
-        bad += interp_violations(wt_triangle_table_q23, i, (i * 7u) % 61u, 61u);
+        bad += interp_violations(tri_table_q23, i, (i * 7u) % 61u, 61u);
     }
     UT_EQ_INT(bad, 0);
 }
@@ -452,6 +485,7 @@ static void test_accumulator(void) {
 void suite_wavetable(void) {
     test_reference_sine();
     test_tables();
+    test_triangle_knots();
     test_interpolation();
     test_sine_lookup();
     test_triangle_lookup();
