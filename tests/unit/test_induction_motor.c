@@ -150,7 +150,8 @@ static induction_motor_status motor_init(motor *m, twin_kind kind, const inducti
 
 static double q31_si(q31_t x, double base) { return fp_to_f64_q31(x) * base; }
 
-static void motor_step(motor *m, const double v[3], motor_out *o) {
+/* One step; with open_phase < 3, that phase disconnected (the projection after the step). */
+static void motor_step_phase(motor *m, const double v[3], uint32_t open_phase, motor_out *o) {
     if (m->kind == TWIN_FIXED) {
         induction_motor_in_q in;
         induction_motor_out_q out;
@@ -158,6 +159,9 @@ static void motor_step(motor *m, const double v[3], motor_out *o) {
         in.v_b = fp_pu_from_f64_q31(v[1], DRIVE_BASE_VOLTAGE_V);
         in.v_c = fp_pu_from_f64_q31(v[2], DRIVE_BASE_VOLTAGE_V);
         induction_motor_step_q(&m->q, &in, &out);
+        if (open_phase < 3u) {
+            induction_motor_open_phase_q(&m->q, open_phase, &out);
+        }
         o->i[0] = q31_si(out.i_a, DRIVE_BASE_CURRENT_A);
         o->i[1] = q31_si(out.i_b, DRIVE_BASE_CURRENT_A);
         o->i[2] = q31_si(out.i_c, DRIVE_BASE_CURRENT_A);
@@ -168,6 +172,9 @@ static void motor_step(motor *m, const double v[3], motor_out *o) {
         induction_motor_in_f32 in = {(float)v[0], (float)v[1], (float)v[2]};
         induction_motor_out_f32 out;
         induction_motor_step_f32(&m->f, &in, &out);
+        if (open_phase < 3u) {
+            induction_motor_open_phase_f32(&m->f, open_phase, &out);
+        }
         o->i[0] = (double)out.i_a;
         o->i[1] = (double)out.i_b;
         o->i[2] = (double)out.i_c;
@@ -175,6 +182,10 @@ static void motor_step(motor *m, const double v[3], motor_out *o) {
         o->tl = (double)out.t_load_nm;
         o->w = (double)out.w_radps;
     }
+}
+
+static void motor_step(motor *m, const double v[3], motor_out *o) {
+    motor_step_phase(m, v, 3u, o);
 }
 
 static void motor_set_speed(motor *m, double w, bool locked) {
@@ -802,30 +813,7 @@ static void test_extremes(void) {
     UT_EQ_INT(motor_a.q.sat_count, 0);
 }
 
-/* The fault hooks: a step with a phase open (projection after the step), a load factor. */
-static void motor_step_open(motor *m, const double v[3], uint32_t phase, motor_out *o) {
-    if (m->kind == TWIN_FIXED) {
-        induction_motor_in_q in;
-        induction_motor_out_q out;
-        in.v_a = fp_pu_from_f64_q31(v[0], DRIVE_BASE_VOLTAGE_V);
-        in.v_b = fp_pu_from_f64_q31(v[1], DRIVE_BASE_VOLTAGE_V);
-        in.v_c = fp_pu_from_f64_q31(v[2], DRIVE_BASE_VOLTAGE_V);
-        induction_motor_step_q(&m->q, &in, &out);
-        induction_motor_open_phase_q(&m->q, phase, &out);
-        o->i[0] = q31_si(out.i_a, DRIVE_BASE_CURRENT_A);
-        o->i[1] = q31_si(out.i_b, DRIVE_BASE_CURRENT_A);
-        o->i[2] = q31_si(out.i_c, DRIVE_BASE_CURRENT_A);
-    } else {
-        induction_motor_in_f32 in = {(float)v[0], (float)v[1], (float)v[2]};
-        induction_motor_out_f32 out;
-        induction_motor_step_f32(&m->f, &in, &out);
-        induction_motor_open_phase_f32(&m->f, phase, &out);
-        o->i[0] = (double)out.i_a;
-        o->i[1] = (double)out.i_b;
-        o->i[2] = (double)out.i_c;
-    }
-}
-
+/* The fault hook of a fouled propeller: a load factor put in force. */
 static induction_motor_status motor_load_factor(motor *m, double factor) {
     induction_motor_status st;
     if (m->kind == TWIN_FIXED) {
@@ -871,7 +859,7 @@ static void test_faults(void) {
                 double v[3];
                 const double x = (n < 500) ? ((double)n + 0.5) / 500.0 : 1.0;
                 sine3_next(&s, 0.5 * rated_peak_v(&induction_motor_params_15kw_delta) * x, v);
-                motor_step_open(m, v, ph, &o);
+                motor_step_phase(m, v, ph, &o);
                 const uint32_t y = (ph + 1u) % 3u;
                 const uint32_t z = (ph + 2u) % 3u;
                 if (n >= 1000) {
