@@ -237,6 +237,8 @@ static void fast_tick_general(drive_segment *d) {
         d->in.duty[0] = d->pout.duty[0];
         d->in.duty[1] = d->pout.duty[1];
         d->in.duty[2] = d->pout.duty[2];
+        d->in.i_motor[0] = stage_current_q15(d->i_fast[0]);
+        d->in.i_motor[1] = stage_current_q15(d->i_fast[1]);
         power_stage_step_q(&d->ps, &d->in);
     }
     const power_stage_q *ps = d->stage;
@@ -253,8 +255,6 @@ static void fast_tick_general(drive_segment *d) {
     if (d->cfg.energy_audit) {
         audit_fast(d);
     }
-    d->in.i_motor[0] = stage_current_q15(d->i_fast[0]);
-    d->in.i_motor[1] = stage_current_q15(d->i_fast[1]);
     d->sums.v_cap[0] += va;
     d->sums.v_cap[1] += vb;
     d->sums.v_dc += ps->v_dc;
@@ -312,8 +312,6 @@ void drive_medium_latch(drive_segment *d) {
     if (!d->plain) {
         d->e_step[0] = o->de[0];
         d->e_step[1] = o->de[1];
-        d->in.i_motor[0] = stage_current_q15(d->i_fast[0]);
-        d->in.i_motor[1] = stage_current_q15(d->i_fast[1]);
         if (d->out.cmd_new) {
             pwm_command_inc_q(d->mod, o->cmd.m, o->cmd.phase_inc);
             d->out.cmd_new = false;
@@ -427,17 +425,16 @@ static void emf_update(drive_segment *d, const q31_t v_mean[2], const q31_t i_en
 
 /*
  * The energy audit's motor copper losses over one step [J], in double from
- * the observed state (the audit is a desk tool): (3/2) h (R_s |i_s|^2 +
- * R_r |i_r|^2) with the alpha-beta currents at the step's end. Out of
+ * the observed state (the audit is a desk tool), with the currents at the
+ * step's end. In the averaged layer the stator resistance includes the
+ * filter's R_L (inverter_avg.h), so its filter losses count here. Out of
  * line: its observation stays off the motor task's frame when unused.
  */
 static double motor_loss_j(const induction_motor_q *m) __attribute__((noinline));
 static double motor_loss_j(const induction_motor_q *m) {
     induction_motor_obs o;
     induction_motor_observe_q(m, &o);
-    const double is2 = o.i_s[0] * o.i_s[0] + o.i_s[1] * o.i_s[1];
-    const double ir2 = o.i_r[0] * o.i_r[0] + o.i_r[1] * o.i_r[1];
-    return 1.5 * m->c.h_s * (m->c.rs_ohm * is2 + m->c.rr_ohm * ir2);
+    return m->c.h_s * induction_motor_copper_loss_f64(&m->c, &o);
 }
 
 /* The slow frame's sums, one motor frame at a time. */

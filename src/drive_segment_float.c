@@ -157,6 +157,8 @@ static void fast_tick_general(drive_segment *d) {
         d->in.duty[0] = d->pout.duty[0];
         d->in.duty[1] = d->pout.duty[1];
         d->in.duty[2] = d->pout.duty[2];
+        d->in.i_motor_a[0] = d->i_fast[0];
+        d->in.i_motor_a[1] = d->i_fast[1];
         power_stage_step_f32(&d->ps, &d->in);
     }
     const power_stage_f32 *ps = d->stage;
@@ -172,8 +174,6 @@ static void fast_tick_general(drive_segment *d) {
     if (d->cfg.energy_audit) {
         audit_fast(d);
     }
-    d->in.i_motor_a[0] = d->i_fast[0];
-    d->in.i_motor_a[1] = d->i_fast[1];
     d->sums.v_cap[0] += va;
     d->sums.v_cap[1] += vb;
     d->sums.v_dc += ps->v_dc;
@@ -230,8 +230,6 @@ void drive_medium_latch(drive_segment *d) {
     if (!d->plain) {
         d->e_step[0] = o->de[0];
         d->e_step[1] = o->de[1];
-        d->in.i_motor_a[0] = d->i_fast[0];
-        d->in.i_motor_a[1] = d->i_fast[1];
         if (d->out.cmd_new) {
             pwm_command_inc_f32(d->mod, o->cmd.m, o->cmd.phase_inc);
             d->out.cmd_new = false;
@@ -329,9 +327,7 @@ static double motor_loss_j(const induction_motor_f32 *m) __attribute__((noinline
 static double motor_loss_j(const induction_motor_f32 *m) {
     induction_motor_obs o;
     induction_motor_observe_f32(m, &o);
-    const double is2 = o.i_s[0] * o.i_s[0] + o.i_s[1] * o.i_s[1];
-    const double ir2 = o.i_r[0] * o.i_r[0] + o.i_r[1] * o.i_r[1];
-    return 1.5 * m->c.h_s * (m->c.rs_ohm * is2 + m->c.rr_ohm * ir2);
+    return m->c.h_s * induction_motor_copper_loss_f64(&m->c, &o);
 }
 
 static void slow_sums_add(drive_segment *d, const drive_frame_sums *s, const float i_end[2]) {

@@ -188,12 +188,15 @@ typedef struct {
 } induction_motor_obs;
 
 /*
- * Magnetic energy (3/4) (psi_s . i_s + psi_r . i_r) [J] and kinetic energy
- * J w^2 / 2 [J] of an observed state.
+ * Magnetic energy (3/4) (psi_s . i_s + psi_r . i_r) [J], kinetic energy
+ * J w^2 / 2 [J] and copper losses (3/2) (R_s |i_s|^2 + R_r |i_r|^2) [W] of
+ * an observed state.
  */
 double induction_motor_magnetic_energy_f64(const induction_motor_obs *o);
 double induction_motor_kinetic_energy_f64(const induction_motor_coefs *c,
                                           const induction_motor_obs *o);
+double induction_motor_copper_loss_f64(const induction_motor_coefs *c,
+                                       const induction_motor_obs *o);
 
 /* ---- Double-precision reference twin (SI) --------------------------------- */
 

@@ -105,3 +105,10 @@ double induction_motor_kinetic_energy_f64(const induction_motor_coefs *c,
                                           const induction_motor_obs *o) {
     return 0.5 * c->j_total_kgm2 * o->w_radps * o->w_radps;
 }
+
+double induction_motor_copper_loss_f64(const induction_motor_coefs *c,
+                                       const induction_motor_obs *o) {
+    const double is2 = o->i_s[0] * o->i_s[0] + o->i_s[1] * o->i_s[1];
+    const double ir2 = o->i_r[0] * o->i_r[0] + o->i_r[1] * o->i_r[1];
+    return 1.5 * (c->rs_ohm * is2 + c->rr_ohm * ir2);
+}

@@ -845,13 +845,13 @@ static void test_faults(void) {
     const propeller_model prop = propeller();
     for (int k = 0; k < 2; k++) {
         motor *m = &motor_a;
+        motor_out o;
         for (uint32_t ph = 0u; ph < 3u; ph++) {
             UT_CHECK(motor_init(m, (twin_kind)k, &induction_motor_params_15kw_delta, NULL) ==
                      INDUCTION_MOTOR_OK);
             motor_set_speed(m, 1470.0 * MATH_PI_F64 / 30.0, true);
             sine3 s;
             sine3_init(&s, 50.0);
-            motor_out o;
             double peak = 0.0;
             double open_max = 0.0;
             double series_err = 0.0;
@@ -876,6 +876,17 @@ static void test_faults(void) {
             UT_CHECK(series_err < 1e-3 * peak);
             UT_EQ_INT(motor_sat(m), 0);
         }
+        UT_TEST("copper losses of an observed state: (3/2) (R_s |i_s|^2 + R_r |i_r|^2), with "
+                "the phase currents' own sum of squares for the stator");
+        induction_motor_obs ob;
+        motor_observe(m, &ob);
+        const induction_motor_coefs *c = motor_coefs(m);
+        double ir2 = ob.i_r[0] * ob.i_r[0] + ob.i_r[1] * ob.i_r[1];
+        double stator = c->rs_ohm * (o.i[0] * o.i[0] + o.i[1] * o.i[1] + o.i[2] * o.i[2]);
+        double p_cu = induction_motor_copper_loss_f64(c, &ob);
+        ut_info("%s: %.6g W (stator %.6g W)", twin_name[k], p_cu, stator);
+        UT_CHECK(stator > 0.0);
+        UT_NEAR(p_cu, stator + 1.5 * c->rr_ohm * ir2, 1e-4 * p_cu);
         UT_TEST("fault: propeller fouling x3 triples the load torque; factors < 1 or > 1000 refused");
         UT_CHECK(motor_init(m, (twin_kind)k, &induction_motor_params_15kw_delta, &prop) ==
                  INDUCTION_MOTOR_OK);
