@@ -1,7 +1,9 @@
 /*
- * Writes src/fixedpoint/wavetable_data.c, the tables of the sine lookups
- * of src/fixedpoint/wavetable.h (the triangle is computed, not tabled). It is the only way that
- * file is made; the file is committed so that the firmware build needs no
+ * Writes src/fixedpoint/wavetable_data.c, the quarter-turn tables of the
+ * sine lookups of src/fixedpoint/wavetable.h (the triangle is computed, not
+ * tabled). It builds the whole turn, checks that the rounded entries keep
+ * the sine's symmetries exactly (which the lookups' unfolding relies on),
+ * and writes the first quarter. It is the only way that file is made; the file is committed so that the firmware build needs no
  * host math library.
  *
  *     gen_wavetables FILE           write the tables to FILE
@@ -20,7 +22,8 @@
 
 #include "fixedpoint/wavetable.h"
 
-#define TABLE_LEN (WT_TABLE_SIZE + 1u)
+#define TABLE_LEN (WT_TABLE_SIZE + 1u)     /* knots of a whole turn */
+#define QUARTER_LEN (WT_QUARTER_SIZE + 1u) /* knots written: the first quarter */
 #define TEXT_CAP (256u * 1024u)
 #define TIE_MARGIN 1e-6L /* least allowed distance from a rounding tie */
 
@@ -109,6 +112,28 @@ static int build_tables(int32_t *sine_q23, float *sine_f32, long double *margin_
     return *margin_q23 >= TIE_MARGIN && *margin_f32 >= TIE_MARGIN;
 }
 
+/*
+ * 1 when every entry equals its unfolding from the first quarter, as
+ * wt_sine_knot_q23() and wt_sine_knot_f32() compute it.
+ */
+static int quarter_unfolds(const int32_t *sine_q23, const float *sine_f32) {
+    uint32_t k;
+
+    for (k = 0u; k < TABLE_LEN; k++) {
+        uint32_t i = wt_quarter_index(k);
+        int negate = (k & (WT_TABLE_SIZE / 2u)) != 0u;
+        int32_t q = negate ? -sine_q23[i] : sine_q23[i];
+        float f = negate ? -sine_f32[i] : sine_f32[i];
+
+        if (sine_q23[k] != q || sine_f32[k] != f) {
+            fprintf(stderr, "gen_wavetables: entry %u is not the unfolding of entry %u\n",
+                    (unsigned)k, (unsigned)i);
+            return 0;
+        }
+    }
+    return 1;
+}
+
 static void emit_header(long double margin_q23, long double margin_f32) {
     emit("/*\n"
          " * Tables of the sine lookups of wavetable.h. This file is\n"
@@ -120,11 +145,12 @@ static void emit_header(long double margin_q23, long double margin_f32) {
          " * and `build/tools/gen_wavetables --check src/fixedpoint/wavetable_data.c`\n"
          " * fails when this file differs from what the generator writes.\n"
          " *\n"
-         " * Entry k, 0 <= k <= %u, belongs to phase k * 2^%u (angle 2 pi k / %u);\n"
-         " * entry %u equals entry 0, the guard that lets the last segment\n"
-         " * interpolate towards the wrap without a test.\n"
-         " *   wt_sine_table_q23[k] = round(256 * 32767 * sin(2 pi k / %u))\n"
-         " *   wt_sine_table_f32[k] = sin(2 pi k / %u) rounded to the nearest float\n"
+         " * Entry k, 0 <= k <= %u, belongs to phase k * 2^%u (angle 2 pi k / %u),\n"
+         " * the first quarter turn; wt_sine_knot_q23() and wt_sine_knot_f32()\n"
+         " * unfold the other %u knots of the turn by symmetry (the generator checks\n"
+         " * that the rounded knots of the whole turn are exactly that unfolding).\n"
+         " *   wt_sine_quarter_q23[k] = round(256 * 32767 * sin(2 pi k / %u))\n"
+         " *   wt_sine_quarter_f32[k] = sin(2 pi k / %u) rounded to the nearest float\n"
          " * round() is to nearest. Each sine is evaluated in long double after an\n"
          " * exact integer reduction of the phase to an angle of at most pi/4 (by\n"
          " * quadrant and reflection), so the argument carries no reduction error.\n"
@@ -134,17 +160,17 @@ static void emit_header(long double margin_q23, long double margin_f32) {
          " * less than that gives this same table.\n"
          " */\n"
          "#include \"fixedpoint/wavetable.h\"\n",
-         WT_TABLE_SIZE, 32u - WT_INDEX_BITS, WT_TABLE_SIZE, WT_TABLE_SIZE, WT_TABLE_SIZE,
-         WT_TABLE_SIZE, margin_q23, margin_f32);
+         WT_QUARTER_SIZE, 32u - WT_INDEX_BITS, WT_TABLE_SIZE, WT_TABLE_SIZE - WT_QUARTER_SIZE,
+         WT_TABLE_SIZE, WT_TABLE_SIZE, margin_q23, margin_f32);
 }
 
 static void emit_int_table(const char *name, const int32_t *table) {
     uint32_t k;
 
-    emit("\nconst int32_t %s[WT_TABLE_SIZE + 1u] = {\n", name);
-    for (k = 0u; k < TABLE_LEN; k++) {
+    emit("\nconst int32_t %s[WT_QUARTER_SIZE + 1u] = {\n", name);
+    for (k = 0u; k < QUARTER_LEN; k++) {
         emit("%s%8ld,%s", (k % 8u == 0u) ? "   " : "", (long)table[k],
-             (k % 8u == 7u || k + 1u == TABLE_LEN) ? "\n" : "");
+             (k % 8u == 7u || k + 1u == QUARTER_LEN) ? "\n" : "");
     }
     emit("};\n");
 }
@@ -152,8 +178,8 @@ static void emit_int_table(const char *name, const int32_t *table) {
 static void emit_float_table(const char *name, const float *table) {
     uint32_t k;
 
-    emit("\nconst float %s[WT_TABLE_SIZE + 1u] = {\n", name);
-    for (k = 0u; k < TABLE_LEN; k++) {
+    emit("\nconst float %s[WT_QUARTER_SIZE + 1u] = {\n", name);
+    for (k = 0u; k < QUARTER_LEN; k++) {
         char digits[32];
 
         /* Nine significant digits identify a float uniquely. */
@@ -163,7 +189,7 @@ static void emit_float_table(const char *name, const float *table) {
             exit(2);
         }
         emit("%s%16sf,%s", (k % 4u == 0u) ? "   " : "", digits,
-             (k % 4u == 3u || k + 1u == TABLE_LEN) ? "\n" : "");
+             (k % 4u == 3u || k + 1u == QUARTER_LEN) ? "\n" : "");
     }
     emit("};\n");
 }
@@ -230,8 +256,11 @@ int main(int argc, char **argv) {
                 TIE_MARGIN, margin_q23, margin_f32);
         return 2;
     }
+    if (!quarter_unfolds(sine_q23, sine_f32)) {
+        return 2;
+    }
     emit_header(margin_q23, margin_f32);
-    emit_int_table("wt_sine_table_q23", sine_q23);
-    emit_float_table("wt_sine_table_f32", sine_f32);
+    emit_int_table("wt_sine_quarter_q23", sine_q23);
+    emit_float_table("wt_sine_quarter_f32", sine_f32);
     return check ? check_file(argv[2]) : write_file(argv[1]);
 }

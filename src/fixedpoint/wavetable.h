@@ -11,12 +11,13 @@
  * increment's two's complement, so the phase runs backwards.
  *
  * Lookup. The top WT_INDEX_BITS bits of the phase select segment k of the
- * table; the next WT_FRAC_BITS bits are the fraction f / 2^15 of the way
- * from entry k to entry k + 1; the lowest 7 bits are ignored. Each table has
- * WT_TABLE_SIZE + 1 entries: the last repeats the first, so segment 1023
- * interpolates towards the wrap without a test. The triangle needs no table:
- * it is linear on each half turn, so its entries and their differences are
- * computed (the same values, bit for bit, as a table of 256 tri(k)).
+ * turn; the next WT_FRAC_BITS bits are the fraction f / 2^15 of the way
+ * from knot k to knot k + 1; the lowest 7 bits are ignored. A turn has
+ * WT_TABLE_SIZE + 1 knots: the last equals the first, so segment 1023
+ * interpolates towards the wrap without a test. The sine's knots come from a
+ * table of its first quarter turn, unfolded by symmetry. The triangle needs
+ * no table: it is linear on each half turn, so its knots and their
+ * differences are computed.
  *
  * Waveforms (Q15 outputs, the float twins are the same divided by 32767):
  *   sine:     32767 * sin(2 pi phase / 2^32);
@@ -28,10 +29,12 @@
  * the exactly rounded value round(32767 * w(phase)); each float output is
  * within 2^-15 of the exact w(phase) (w the unit waveform).
  *
- * Cost. A Q15 sine lookup is two loads, a subtraction, a multiplication, an
- * offset floor shift and a rounding shift; the float lookup is two loads, a
+ * Cost. A Q15 sine lookup is two unfolded loads (a mask, a comparison and
+ * a conditional negation each), a subtraction, a multiplication, an offset
+ * floor shift and a rounding shift; the float lookup is the two loads, a
  * conversion and a multiply-add. No division. The triangle replaces the
- * loads by a comparison and a multiply-add.
+ * loads by a comparison and a multiply-add. The sine is evaluated at the
+ * motor task's rate on the real-time path (pwm_rt.h), the triangle at 2 us.
  */
 #ifndef UUV_WAVETABLE_H
 #define UUV_WAVETABLE_H
@@ -53,15 +56,37 @@
 #define WT_PHASE_240 2863311531u     /* round(2^33 / 3): 240 degrees, 1/3 count long */
 
 /*
- * Tables (wavetable_data.c, written by tools/gen_wavetables.c). Entry k is
- * at phase k * 2^22.
- *   wt_sine_table_q23[k]     = round(256 * 32767 * sin(2 pi k / 1024)):
- *                              Q15 with 8 more fraction bits (Q23 of the
- *                              Q15 waveform), |entry| <= 8388352.
- *   wt_sine_table_f32[k]     = sin(2 pi k / 1024) rounded to float.
+ * The sine's knots. Entry k of the full turn (k = 0 .. 1024, at phase
+ * k * 2^22) is round(256 * 32767 * sin(2 pi k / 1024)) in Q23 of the Q15
+ * waveform (|entry| <= 8388352) and sin(2 pi k / 1024) rounded to float.
+ * The rounded sine keeps the sine's symmetries exactly (sin(pi - x) = sin x,
+ * sin(x + pi) = -sin x; the generator checks it), so only the first quarter,
+ * k = 0 .. 256, is stored (wavetable_data.c, written by
+ * tools/gen_wavetables.c) and wt_sine_knot_*() unfold it: a mirror and a
+ * sign, a few instructions, for 3 KiB of flash per table.
  */
-extern const int32_t wt_sine_table_q23[WT_TABLE_SIZE + 1u];
-extern const float wt_sine_table_f32[WT_TABLE_SIZE + 1u];
+#define WT_QUARTER_SIZE (WT_TABLE_SIZE / 4u) /* segments per quarter turn: 256 */
+
+extern const int32_t wt_sine_quarter_q23[WT_QUARTER_SIZE + 1u];
+extern const float wt_sine_quarter_f32[WT_QUARTER_SIZE + 1u];
+
+/* The quarter-table index of full-turn knot k: k folded into [0, 256]. */
+static inline uint32_t wt_quarter_index(uint32_t k) {
+    uint32_t h = k & (WT_TABLE_SIZE / 2u - 1u); /* position in the half turn */
+    return (h <= WT_QUARTER_SIZE) ? h : WT_TABLE_SIZE / 2u - h;
+}
+
+/* Knot k (0 .. 1024) of the full-turn sine, Q23. */
+static inline int32_t wt_sine_knot_q23(uint32_t k) {
+    int32_t e = wt_sine_quarter_q23[wt_quarter_index(k)];
+    return ((k & (WT_TABLE_SIZE / 2u)) != 0u) ? -e : e;
+}
+
+/* Knot k (0 .. 1024) of the full-turn sine, float. */
+static inline float wt_sine_knot_f32(uint32_t k) {
+    float e = wt_sine_quarter_f32[wt_quarter_index(k)];
+    return ((k & (WT_TABLE_SIZE / 2u)) != 0u) ? -e : e;
+}
 
 /*
  * The triangle's knots, k = 0 .. 1024 (entry k at phase k 2^22):
@@ -73,7 +98,7 @@ extern const float wt_sine_table_f32[WT_TABLE_SIZE + 1u];
 #define WT_TRI_SLOPE_Q23 32767  /* change per segment, Q23 */
 
 /*
- * Linear interpolation in a Q23 table, rounded to Q15.
+ * Linear interpolation between two Q23 knots, rounded to Q15.
  *
  * Scaling: entries e0, e1 are Q23; the fraction f is in [0, 2^15). The
  * interpolated value is e0 + floor((e1 - e0) * f / 2^15), Q23, then rounded
@@ -91,37 +116,31 @@ static inline q15_t wt_segment_q15(int32_t e0, int32_t e1, uint32_t phase) {
     return (q15_t)((int32_t)(offset >> WT_ENTRY_EXTRA_BITS) - 32768);
 }
 
-static inline q15_t wt_interp_q15(const int32_t *table, uint32_t phase) {
-    uint32_t index = phase >> (32u - WT_INDEX_BITS);
-    return wt_segment_q15(table[index], table[index + 1u], phase);
-}
-
 /*
- * The float twin of wt_interp_q15(): the same segment and the same 15-bit
+ * The float twin of wt_segment_q15(): the same segment and the same 15-bit
  * fraction (converted exactly to float), e0 + (e1 - e0) * f in single
  * precision. With -ffp-contract=off every target rounds it alike.
  */
-static inline float wt_interp_f32(const float *table, uint32_t phase) {
-    uint32_t index = phase >> (32u - WT_INDEX_BITS);
+static inline float wt_segment_f32(float e0, float e1, uint32_t phase) {
     float frac = (float)((phase >> WT_IGNORED_BITS) & ((1u << WT_FRAC_BITS) - 1u)) *
                  (1.0f / 32768.0f);
-    float e0 = table[index];
-    return e0 + (table[index + 1u] - e0) * frac;
+    return e0 + (e1 - e0) * frac;
 }
 
 /* 32767 * sin(2 pi phase / 2^32), Q15, within 1 LSB of the rounded value. */
 static inline q15_t wt_sin_q15(uint32_t phase) {
-    return wt_interp_q15(wt_sine_table_q23, phase);
+    uint32_t k = phase >> (32u - WT_INDEX_BITS);
+    return wt_segment_q15(wt_sine_knot_q23(k), wt_sine_knot_q23(k + 1u), phase);
 }
 
 /* 32767 * cos(2 pi phase / 2^32): the sine a quarter turn ahead. */
 static inline q15_t wt_cos_q15(uint32_t phase) {
-    return wt_interp_q15(wt_sine_table_q23, phase + WT_PHASE_QUARTER);
+    return wt_sin_q15(phase + WT_PHASE_QUARTER);
 }
 
 /*
  * The PWM carrier in Q15: -32767 at phase 0, +32767 at phase 2^31. The
- * interpolation of wt_interp_q15() between the knots above, which differ
+ * interpolation of wt_segment_q15() between the knots above, which differ
  * by +-32767 (within its bound of 51472).
  */
 static inline q15_t wt_tri_q15(uint32_t phase) {
@@ -140,17 +159,18 @@ static inline q15_t wt_tri_q15(uint32_t phase) {
 
 /* sin(2 pi phase / 2^32), within 2^-15 of the exact value. */
 static inline float wt_sin_f32(uint32_t phase) {
-    return wt_interp_f32(wt_sine_table_f32, phase);
+    uint32_t k = phase >> (32u - WT_INDEX_BITS);
+    return wt_segment_f32(wt_sine_knot_f32(k), wt_sine_knot_f32(k + 1u), phase);
 }
 
 /* cos(2 pi phase / 2^32), within 2^-15 of the exact value. */
 static inline float wt_cos_f32(uint32_t phase) {
-    return wt_interp_f32(wt_sine_table_f32, phase + WT_PHASE_QUARTER);
+    return wt_sin_f32(phase + WT_PHASE_QUARTER);
 }
 
 /*
  * The PWM carrier in [-1, 1]: -1 at phase 0, +1 at phase 2^31. The
- * interpolation of wt_interp_f32() between the knots above, whose
+ * interpolation of wt_segment_f32() between the knots above, whose
  * difference is exactly +-1/256 in float.
  */
 static inline float wt_tri_f32(uint32_t phase) {

@@ -140,24 +140,46 @@ static void test_reference_sine(void) {
 
 /* ---- Tables --------------------------------------------------------------- */
 
+/* The sine's knots of the whole turn, unfolded from the quarter tables (by test_tables()). */
+static int32_t sine_knots_q23[WT_TABLE_SIZE + 1u];
+static float sine_knots_f32[WT_TABLE_SIZE + 1u];
+
+/* The lookup in a table of knots: the reference the computed lookups must equal. */
+static q15_t table_lookup_q15(const int32_t *table, uint32_t phase) {
+    uint32_t k = phase >> (32u - WT_INDEX_BITS);
+    return wt_segment_q15(table[k], table[k + 1u], phase);
+}
+
+static float table_lookup_f32(const float *table, uint32_t phase) {
+    uint32_t k = phase >> (32u - WT_INDEX_BITS);
+    return wt_segment_f32(table[k], table[k + 1u], phase);
+}
+
 static void test_tables(void) {
     uint32_t k;
     unsigned bad_sine = 0u;
     unsigned bad_sine_f = 0u;
 
-    UT_TEST("tables: sine Q23 entry k = round(256*32767*sin(2 pi k/1024)) and f32 entry = "
-            "(float)sin, for all 1025 entries (reference: own double sine)");
+    UT_TEST("tables: sine Q23 knot k = round(256*32767*sin(2 pi k/1024)) and f32 knot = "
+            "(float)sin, for all 1025 knots unfolded from the quarter tables (reference: own "
+            "double sine)");
     for (k = 0u; k <= WT_TABLE_SIZE; k++) {
         double s = ref_sin_turn(k << (32u - WT_INDEX_BITS));
-        bad_sine += (wt_sine_table_q23[k] != ref_round(256.0 * 32767.0 * s)) ? 1u : 0u;
-        bad_sine_f += (wt_sine_table_f32[k] != (float)s) ? 1u : 0u;
+        sine_knots_q23[k] = wt_sine_knot_q23(k);
+        bad_sine += (sine_knots_q23[k] != ref_round(256.0 * 32767.0 * s)) ? 1u : 0u;
+        sine_knots_f32[k] = wt_sine_knot_f32(k);
+        bad_sine_f += (sine_knots_f32[k] != (float)s) ? 1u : 0u;
     }
     UT_EQ_INT(bad_sine, 0);
     UT_EQ_INT(bad_sine_f, 0);
 
-    UT_TEST("tables: the sine's guard entries equal entry 0");
-    UT_EQ_INT(wt_sine_table_q23[WT_TABLE_SIZE], wt_sine_table_q23[0]);
-    UT_CHECK(wt_sine_table_f32[WT_TABLE_SIZE] == wt_sine_table_f32[0]);
+    UT_TEST("tables: the sine's last knot equals knot 0, and the quarter turn's knots are "
+            "0 and the peak 256*32767");
+    UT_EQ_INT(wt_sine_knot_q23(WT_TABLE_SIZE), wt_sine_knot_q23(0u));
+    UT_CHECK(wt_sine_knot_f32(WT_TABLE_SIZE) == wt_sine_knot_f32(0u));
+    UT_EQ_INT(wt_sine_knot_q23(WT_QUARTER_SIZE), 256 * 32767);
+    UT_EQ_INT(wt_sine_knot_q23(3u * WT_QUARTER_SIZE), -256 * 32767);
+    UT_CHECK(wt_sine_knot_f32(WT_QUARTER_SIZE) == 1.0f);
 }
 
 /*
@@ -188,15 +210,15 @@ static void test_triangle_knots(void) {
         for (uint32_t f = 0u; f < (1u << WT_FRAC_BITS); f++) {
             uint32_t phase = (segments[i] << (32u - WT_INDEX_BITS)) | (f << WT_IGNORED_BITS) |
                              ((f * 37u) & 127u);
-            bad += (wt_tri_q15(phase) != wt_interp_q15(tri_table_q23, phase)) ? 1u : 0u;
-            bad_f += (wt_tri_f32(phase) != wt_interp_f32(tri_table_f32, phase)) ? 1u : 0u;
+            bad += (wt_tri_q15(phase) != table_lookup_q15(tri_table_q23, phase)) ? 1u : 0u;
+            bad_f += (wt_tri_f32(phase) != table_lookup_f32(tri_table_f32, phase)) ? 1u : 0u;
         }
     }
     for (uint32_t k = 0u; k < WT_TABLE_SIZE; k++) {
         for (uint32_t f = (k * 7u) % 61u; f < (1u << WT_FRAC_BITS); f += 61u) {
             uint32_t phase = (k << (32u - WT_INDEX_BITS)) | (f << WT_IGNORED_BITS);
-            bad += (wt_tri_q15(phase) != wt_interp_q15(tri_table_q23, phase)) ? 1u : 0u;
-            bad_f += (wt_tri_f32(phase) != wt_interp_f32(tri_table_f32, phase)) ? 1u : 0u;
+            bad += (wt_tri_q15(phase) != table_lookup_q15(tri_table_q23, phase)) ? 1u : 0u;
+            bad_f += (wt_tri_f32(phase) != table_lookup_f32(tri_table_f32, phase)) ? 1u : 0u;
         }
     }
     UT_EQ_INT(bad, 0);
@@ -219,7 +241,7 @@ static unsigned interp_violations(const int32_t *table, uint32_t k, uint32_t f_f
         uint32_t phase = (k << (32u - WT_INDEX_BITS)) | (f << WT_IGNORED_BITS) | ((f * 37u) & 127u);
         int64_t e0 = table[k];
         int64_t num = e0 * 32768 + (table[k + 1u] - e0) * (int64_t)f;
-        int64_t diff = (int64_t)wt_interp_q15(table, phase) * 8388608 - num;
+        int64_t diff = (int64_t)table_lookup_q15(table, phase) * 8388608 - num;
         bad += (diff <= -(4194304 + 32768) || diff > 4194304) ? 1u : 0u;
     }
     return bad;
@@ -228,12 +250,25 @@ static unsigned interp_violations(const int32_t *table, uint32_t k, uint32_t f_f
 static void test_interpolation(void) {
     static const uint32_t segments[] = {0u, 1u, 127u, 128u, 255u, 256u, 511u, 512u, 767u, 1023u};
     unsigned bad = 0u;
+    unsigned bad_f = 0u;
     uint32_t i;
+
+    UT_TEST("sine lookups (Q15 and f32) equal the lookup in the unfolded table of the whole "
+            "turn, bit for bit: every 61st fraction of all 1024 segments");
+    for (i = 0u; i < WT_TABLE_SIZE; i++) {
+        for (uint32_t f = (i * 5u) % 61u; f < (1u << WT_FRAC_BITS); f += 61u) {
+            uint32_t phase = (i << (32u - WT_INDEX_BITS)) | (f << WT_IGNORED_BITS) | (f & 127u);
+            bad += (wt_sin_q15(phase) != table_lookup_q15(sine_knots_q23, phase)) ? 1u : 0u;
+            bad_f += (wt_sin_f32(phase) != table_lookup_f32(sine_knots_f32, phase)) ? 1u : 0u;
+        }
+    }
+    UT_EQ_INT(bad, 0);
+    UT_EQ_INT(bad_f, 0);
 
     UT_TEST("Q15 interpolation is within 1/2 + 2^-8 LSB of the exact interpolation of its "
             "entries: every fraction of 10 segments, exact integer reference");
     for (i = 0u; i < sizeof segments / sizeof segments[0]; i++) {
-        bad += interp_violations(wt_sine_table_q23, segments[i], 0u, 1u);
+        bad += interp_violations(sine_knots_q23, segments[i], 0u, 1u);
         bad += interp_violations(tri_table_q23, segments[i], 0u, 1u);
     }
     UT_EQ_INT(bad, 0);
@@ -242,7 +277,7 @@ static void test_interpolation(void) {
             "(varying offset), exact integer reference");
     bad = 0u;
     for (i = 0u; i < WT_TABLE_SIZE; i++) {
-        bad += interp_violations(wt_sine_table_q23, i, i % 61u, 61u);
+        bad += interp_violations(sine_knots_q23, i, i % 61u, 61u);
         bad += interp_violations(tri_table_q23, i, (i * 7u) % 61u, 61u);
     }
     UT_EQ_INT(bad, 0);

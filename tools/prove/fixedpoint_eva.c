@@ -8,7 +8,7 @@
  * The Q15 table lookups are the one domain given as a union of cases
  * (together the whole domain), because Eva keeps an interval per variable
  * and no relation between variables: the bound on the difference of two
- * adjacent entries that wt_interp_q15() relies on is a property of the
+ * adjacent knots that wt_segment_q15() relies on is a property of the
  * table, not of the range of its entries. So the lookups run once per
  * segment, where the two entries are constants and the bound is evaluated,
  * not assumed; within a segment the fraction 0 is a case of its own, so
