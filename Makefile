@@ -120,12 +120,14 @@ $(eval $(call host_variant,linux-clang-float,$(CLANG),float,$(HOST_OPT),))
 ARM_COMMON := $(COMMON) -O2 -g -ffreestanding -fno-tree-loop-distribute-patterns \
               -ffunction-sections -fdata-sections -fstack-usage
 # The files of the 2 us tick are compiled without GCC's first instruction
-# scheduling pass: on Thumb-2 it hoists loads and raises register pressure,
-# and the spills cost the fast tick about 20 instructions (docs/firmware.md).
+# scheduling pass and without partial redundancy elimination: on Thumb-2
+# the one hoists loads and the other keeps loaded coefficients alive across
+# the filter's two phases; both raise register pressure, and the spills
+# cost the fast tick about 20 and 8 instructions (docs/firmware.md).
 # Without sibling calls, each measured function returns through its own
 # exit (tools/fw-regions.sh measures from entry to return).
 FW_FAST_C := src/drive_segment_fixed.c src/drive_segment_float.c src/executive.c
-FW_FAST_FLAGS := -fno-schedule-insns -fno-optimize-sibling-calls
+FW_FAST_FLAGS := -fno-schedule-insns -fno-tree-pre -fno-optimize-sibling-calls
 FW_SCENARIO_EVENTS ?= 64
 FW_STACK_BYTES ?= 3072
 FW_SIM_C := ports/cortexm/fw_main.c

@@ -181,17 +181,23 @@ static void audit_fast(drive_segment *d) {
  * coupling): modulator, power stage, the motor's fast companion and the
  * frame sums, nothing else.
  */
+static inline void fast_phase_plain(drive_segment *d, ps_fast_q *f, int x) {
+    power_stage_q *ps = &d->ps;
+    ps_fast_phase_q(ps, f, x, d->i_fast[x]);
+    const int32_t v = ps->ph[x].v_c;
+    /* i + round((v - e) k32 / 2^32): one multiply-accumulate per phase. */
+    d->i_fast[x] = ps_hi_q(ps_mac_q(ps_acc_q(d->i_fast[x]), v - d->e[x], d->k32));
+    d->sums.v_cap[x] += v;
+}
+
 static inline void fast_tick_plain(drive_segment *d) {
     power_stage_q *ps = &d->ps;
+    ps_fast_q f;
     pwm_rt_step(&d->rt, d->s);
-    ps_fast_step_q(ps, &d->in.battery, d->s, d->i_fast[0], d->i_fast[1]);
-    const int32_t va = ps->ph[0].v_c;
-    const int32_t vb = ps->ph[1].v_c;
-    /* i + round((v - e) k32 / 2^32): one multiply-accumulate per phase. */
-    d->i_fast[0] = ps_hi_q(ps_mac_q(ps_acc_q(d->i_fast[0]), va - d->e[0], d->k32));
-    d->i_fast[1] = ps_hi_q(ps_mac_q(ps_acc_q(d->i_fast[1]), vb - d->e[1], d->k32));
-    d->sums.v_cap[0] += va;
-    d->sums.v_cap[1] += vb;
+    ps_fast_begin_q(ps, d->s, &f);
+    fast_phase_plain(d, &f, 0);
+    fast_phase_plain(d, &f, 1);
+    ps_fast_end_q(ps, &d->in.battery, &f);
     d->sums.v_dc += ps->v_dc;
 }
 

@@ -87,16 +87,22 @@ static float stage_v_dc(const drive_segment *d) {
 
 
 /* The real-time step (as in drive_segment_fixed.c). */
+static inline void fast_phase_plain(drive_segment *d, ps_fast_f32 *f, int x) {
+    power_stage_f32 *ps = &d->ps;
+    ps_fast_phase_f32(ps, f, x, d->i_fast[x]);
+    const float v = ps->ph[x].v_c;
+    d->i_fast[x] += (v - d->e[x]) * d->k_l;
+    d->sums.v_cap[x] += v;
+}
+
 static inline void fast_tick_plain(drive_segment *d) {
     power_stage_f32 *ps = &d->ps;
+    ps_fast_f32 f;
     pwm_rt_step(&d->rt, d->s);
-    ps_fast_step_f32(ps, &d->in.battery, d->s, d->i_fast[0], d->i_fast[1]);
-    const float va = ps->ph[0].v_c;
-    const float vb = ps->ph[1].v_c;
-    d->i_fast[0] += (va - d->e[0]) * d->k_l;
-    d->i_fast[1] += (vb - d->e[1]) * d->k_l;
-    d->sums.v_cap[0] += va;
-    d->sums.v_cap[1] += vb;
+    ps_fast_begin_f32(ps, d->s, &f);
+    fast_phase_plain(d, &f, 0);
+    fast_phase_plain(d, &f, 1);
+    ps_fast_end_f32(ps, &d->in.battery, &f);
     d->sums.v_dc += ps->v_dc;
 }
 
