@@ -177,9 +177,9 @@ static void audit_fast(drive_segment *d) {
 }
 
 /*
- * The real-time step (switching inverter, held EMF, mean or sampled
- * coupling): modulator, power stage, the motor's fast companion and the
- * frame sums, nothing else.
+ * Filter phase x of the real-time step, then at once the motor's fast
+ * companion of that phase and its frame sum, so that little of the phase
+ * stays alive in registers for the next.
  */
 static inline void fast_phase_plain(drive_segment *d, ps_fast_q *f, int x) {
     power_stage_q *ps = &d->ps;
@@ -190,6 +190,11 @@ static inline void fast_phase_plain(drive_segment *d, ps_fast_q *f, int x) {
     d->sums.v_cap[x] += v;
 }
 
+/*
+ * The real-time step (switching inverter, held EMF, mean or sampled
+ * coupling): modulator, power stage, the motor's fast companion and the
+ * frame sums, nothing else.
+ */
 static inline void fast_tick_plain(drive_segment *d) {
     power_stage_q *ps = &d->ps;
     ps_fast_q f;

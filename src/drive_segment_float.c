@@ -86,7 +86,7 @@ static float stage_v_dc(const drive_segment *d) {
 }
 
 
-/* The real-time step (as in drive_segment_fixed.c). */
+/* Filter phase x of the real-time step, its companion and its sum (as in the fixed twin). */
 static inline void fast_phase_plain(drive_segment *d, ps_fast_f32 *f, int x) {
     power_stage_f32 *ps = &d->ps;
     ps_fast_phase_f32(ps, f, x, d->i_fast[x]);
@@ -95,6 +95,7 @@ static inline void fast_phase_plain(drive_segment *d, ps_fast_f32 *f, int x) {
     d->sums.v_cap[x] += v;
 }
 
+/* The real-time step (as in drive_segment_fixed.c). */
 static inline void fast_tick_plain(drive_segment *d) {
     power_stage_f32 *ps = &d->ps;
     ps_fast_f32 f;

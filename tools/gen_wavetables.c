@@ -3,8 +3,8 @@
  * sine lookups of src/fixedpoint/wavetable.h (the triangle is computed, not
  * tabled). It builds the whole turn, checks that the rounded entries keep
  * the sine's symmetries exactly (which the lookups' unfolding relies on),
- * and writes the first quarter. It is the only way that file is made; the file is committed so that the firmware build needs no
- * host math library.
+ * and writes the first quarter. It is the only way that file is made; the
+ * file is committed so that the firmware build needs no host math library.
  *
  *     gen_wavetables FILE           write the tables to FILE
  *     gen_wavetables --check FILE   exit 1 if FILE differs from what would be
