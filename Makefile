@@ -123,7 +123,7 @@ ARM_COMMON := $(COMMON) -O2 -g -ffreestanding -fno-tree-loop-distribute-patterns
 # scheduling pass and without partial redundancy elimination: on Thumb-2
 # the one hoists loads and the other keeps loaded coefficients alive across
 # the filter's two phases; both raise register pressure, and the spills
-# cost the fast tick about 20 and 8 instructions (docs/firmware.md).
+# cost the fast tick about 20 and 17 instructions (docs/firmware.md).
 # Without sibling calls, each measured function returns through its own
 # exit (tools/fw-regions.sh measures from entry to return).
 FW_FAST_C := src/drive_segment_fixed.c src/drive_segment_float.c src/executive.c

@@ -140,9 +140,16 @@ static void test_reference_sine(void) {
 
 /* ---- Tables --------------------------------------------------------------- */
 
-/* The sine's knots of the whole turn, unfolded from the quarter tables (by test_tables()). */
+/* The sine's knots of the whole turn, unfolded from the quarter tables. */
 static int32_t sine_knots_q23[WT_TABLE_SIZE + 1u];
 static float sine_knots_f32[WT_TABLE_SIZE + 1u];
+
+static void build_sine_knots(void) {
+    for (uint32_t k = 0u; k <= WT_TABLE_SIZE; k++) {
+        sine_knots_q23[k] = wt_sine_knot_q23(k);
+        sine_knots_f32[k] = wt_sine_knot_f32(k);
+    }
+}
 
 /* The lookup in a table of knots: the reference the computed lookups must equal. */
 static q15_t table_lookup_q15(const int32_t *table, uint32_t phase) {
@@ -163,11 +170,10 @@ static void test_tables(void) {
     UT_TEST("tables: sine Q23 knot k = round(256*32767*sin(2 pi k/1024)) and f32 knot = "
             "(float)sin, for all 1025 knots unfolded from the quarter tables (reference: own "
             "double sine)");
+    build_sine_knots();
     for (k = 0u; k <= WT_TABLE_SIZE; k++) {
         double s = ref_sin_turn(k << (32u - WT_INDEX_BITS));
-        sine_knots_q23[k] = wt_sine_knot_q23(k);
         bad_sine += (sine_knots_q23[k] != ref_round(256.0 * 32767.0 * s)) ? 1u : 0u;
-        sine_knots_f32[k] = wt_sine_knot_f32(k);
         bad_sine_f += (sine_knots_f32[k] != (float)s) ? 1u : 0u;
     }
     UT_EQ_INT(bad_sine, 0);
@@ -253,6 +259,7 @@ static void test_interpolation(void) {
     unsigned bad_f = 0u;
     uint32_t i;
 
+    build_sine_knots();
     UT_TEST("sine lookups (Q15 and f32) equal the lookup in the unfolded table of the whole "
             "turn, bit for bit: every 61st fraction of all 1024 segments");
     for (i = 0u; i < WT_TABLE_SIZE; i++) {
