@@ -35,6 +35,7 @@ NUM_float := 2
 # ---- Sources --------------------------------------------------------------
 
 SRC_C := $(sort $(wildcard src/*.c src/*/*.c src/*/*/*.c))
+SRC_H := $(sort $(wildcard src/*.h src/*/*.h src/*/*/*.h))
 TEST_C := tests/harness/ut.c tests/harness/runner.c $(sort $(wildcard tests/unit/test_*.c))
 SUITES := $(patsubst tests/unit/test_%.c,%,$(sort $(wildcard tests/unit/test_*.c)))
 LINUX_PORT_C := $(sort $(wildcard ports/linux/hal_*.c))
@@ -126,6 +127,11 @@ ARM_COMMON := $(COMMON) -O2 -g -ffreestanding -fno-tree-loop-distribute-patterns
 # cost the fast tick about 20 and 17 instructions (docs/firmware.md).
 # Without sibling calls, each measured function returns through its own
 # exit (tools/fw-regions.sh measures from entry to return).
+# The real-time fast step of the fixed Cortex-M4 and M7 images: 1 the
+# Thumb-2 kernel (ports/cortexm/fast_kernel_v7m.S), 0 the C (to compare
+# the two). The Cortex-M3 images keep the C: the kernel would not fit
+# beside it in their 64 KiB, and they have no 2 us budget to meet.
+FW_FAST_KERNEL ?= 1
 FW_FAST_C := src/drive_segment_fixed.c src/drive_segment_float.c src/executive.c
 FW_FAST_FLAGS := -fno-schedule-insns -fno-tree-pre -fno-optimize-sibling-calls
 FW_SCENARIO_EVENTS ?= 64
@@ -150,10 +156,13 @@ $(BUILD)/gen/part%/suites.inc: FORCE
 
 define fw_variant
 $(1)-$(2)_DIR := $(BUILD)/cortexm-$(1)-$(2)
+$(1)-$(2)_KERNEL := $$(if $$(filter fixed,$(2)),$$(if $$(findstring cortex-m3,$(3)),0,$(FW_FAST_KERNEL)),0)
 $(1)-$(2)_CFLAGS := $(ARM_COMMON) $(3) -DUUV_NUMERIC=$(NUM_$(2)) -DUUV_TARGET_HAS_FPU=$(4) \
-    -DSCENARIO_MAX_EVENTS=$(FW_SCENARIO_EVENTS)u -DBOARD_NAME='"$(1)"' $(INC) -Iports/cortexm
+    -DSCENARIO_MAX_EVENTS=$(FW_SCENARIO_EVENTS)u -DBOARD_NAME='"$(1)"' $(INC) -Iports/cortexm \
+    -DFW_FAST_KERNEL=$$($(1)-$(2)_KERNEL)
 $(1)-$(2)_LDFLAGS := $(3) -nostdlib -Wl,--gc-sections -Lldscripts -Tldscripts/$(1).ld
-$(1)-$(2)_SRC_O := $$(patsubst %.c,$$($(1)-$(2)_DIR)/obj/%.o,$(SRC_C) $(CORTEXM_PORT_C) $(5))
+$(1)-$(2)_SRC_O := $$(patsubst %.c,$$($(1)-$(2)_DIR)/obj/%.o,$(SRC_C) $(CORTEXM_PORT_C) $(5)) \
+    $$(if $$(filter 1,$$($(1)-$(2)_KERNEL)),$$($(1)-$(2)_DIR)/obj/ports/cortexm/fast_kernel_v7m.o)
 $(1)-$(2)_TEST_O := $$(patsubst %.c,$$($(1)-$(2)_DIR)/obj/%.o,$(TEST_C))
 $(1)-$(2)_SIM_O := $$(patsubst %.c,$$($(1)-$(2)_DIR)/obj/%.o,$(FW_SIM_C))
 $(1)-$(2)_FAIL_O := $$(filter-out %/test_harness.o,$$($(1)-$(2)_TEST_O)) \
@@ -163,6 +172,17 @@ $$($(1)-$(2)_DIR)/obj/%.o: %.c | $(BUILD)/gen/suites.inc
 	@mkdir -p $$(@D)
 	$(ARM_CC) $$($(1)-$(2)_CFLAGS) $$(or $(7),$$(if $$(filter $$<,$(FW_SIZE_C)),-Os)) \
 	    $$(if $$(filter $$<,$(FW_FAST_C)),$(FW_FAST_FLAGS)) -c $$< -o $$@
+
+# The fast kernel's offsets, from the C declarations (fast_kernel_offsets.c).
+$$($(1)-$(2)_DIR)/gen/fast_kernel_offsets.h: ports/cortexm/fast_kernel_offsets.c $(SRC_H)
+	@mkdir -p $$(@D)
+	$(ARM_CC) $$($(1)-$(2)_CFLAGS) -S -o $$@.s $$<
+	sed -n 's/^@OFFSET \([A-Z0-9_]*\) \(-\{0,1\}[0-9]*\)$$$$/#define \1 \2/p' $$@.s > $$@.tmp
+	mv $$@.tmp $$@
+
+$$($(1)-$(2)_DIR)/obj/%.o: %.S $$($(1)-$(2)_DIR)/gen/fast_kernel_offsets.h
+	@mkdir -p $$(@D)
+	$(ARM_CC) $$($(1)-$(2)_CFLAGS) -I$$($(1)-$(2)_DIR)/gen -c $$< -o $$@
 
 $$($(1)-$(2)_DIR)/obj-mustfail/test_harness.o: tests/unit/test_harness.c
 	@mkdir -p $$(@D)

@@ -49,9 +49,11 @@
 #define UUV_DRIVE_SEGMENT_H
 
 #include <stdbool.h>
+#include <stddef.h>
 #include <stdint.h>
 
 #include "models/drive_control.h"
+
 #include "models/induction_motor.h"
 #include "models/inverter_avg.h"
 #include "models/power_stage.h"
@@ -177,6 +179,12 @@ typedef enum {
     DRIVE_ERR_MODEL     /* a model refused its parameters at these steps */
 } drive_status;
 
+/*
+ * A port's implementation of the real-time fast step (drive_use_fast_kernel).
+ */
+typedef struct drive_segment drive_segment;
+typedef void drive_fast_kernel(drive_segment *d);
+
 #if UUV_NUMERIC == UUV_NUMERIC_FIXED
 
 /* Sums of one motor frame, from the fast steps (Q3.28 per unit summed). */
@@ -214,9 +222,10 @@ typedef struct {
     uint8_t trip;              /* drive_trip at the boundary */
 } drive_slow_sums;
 
-typedef struct {
+struct drive_segment {
     drive_config cfg;
     bool plain;                 /* the real-time path: switching, ZOH or staggered, mean or sample */
+    drive_fast_kernel *fast_now; /* kernel while plain, else NULL: what drive_fast_step() calls */
     /* Fast segment: the real-time modulator and power stage (switching), or the general ones. */
     pwm_rt rt;
     int32_t s[3];               /* leg states of the last step (switching) */
@@ -280,7 +289,8 @@ typedef struct {
     uint8_t trip_req;           /* a trip the background requested, applied at a slow boundary */
     bool uv_req;                /* the motor task saw an under-voltage (latched next) */
     bool plain_ok;              /* the configuration allows the real-time path */
-} drive_segment;
+    drive_fast_kernel *kernel;  /* a port's real-time step, or NULL (drive_use_fast_kernel) */
+};
 
 #else /* UUV_NUMERIC_FLOAT */
 
@@ -317,9 +327,10 @@ typedef struct {
     uint8_t trip;
 } drive_slow_sums;
 
-typedef struct {
+struct drive_segment {
     drive_config cfg;
     bool plain;
+    drive_fast_kernel *fast_now;
     pwm_rt rt;
     int32_t s[3];
     pwm_f32 pwm;
@@ -370,7 +381,8 @@ typedef struct {
     uint8_t trip_req;
     bool uv_req;
     bool plain_ok;
-} drive_segment;
+    drive_fast_kernel *kernel;
+};
 
 #endif
 
@@ -379,6 +391,25 @@ drive_status drive_init(drive_segment *d, const drive_config *cfg, const propell
 
 /* One fast step (the 2 us interrupt's work). */
 void drive_fast_tick(drive_segment *d);
+
+/*
+ * Hands the real-time step (switching inverter with the held EMF and the
+ * mean or sampled coupling, no faults: the drive's "plain" path) to a
+ * port's kernel, or back to the C when kernel is NULL. The kernel must
+ * compute what drive_fast_tick() computes there, bit for bit (ports/
+ * cortexm's for ARMv7-M is tested against it); every other path stays the
+ * C's. Call it after drive_init().
+ */
+void drive_use_fast_kernel(drive_segment *d, drive_fast_kernel *kernel);
+
+/* The fast step as the executive takes it: the kernel on the real-time path, else the C. */
+static inline void drive_fast_step(drive_segment *d) {
+    if (d->fast_now != NULL) {
+        d->fast_now(d);
+    } else {
+        drive_fast_tick(d);
+    }
+}
 
 /*
  * The motor-frame boundary, called from the fast tick, in two halves: the

@@ -198,6 +198,17 @@ void drive_fast_tick(drive_segment *d) {
     }
 }
 
+/* The real-time path on or off, and the step drive_fast_step() calls with it. */
+static void plain_set(drive_segment *d, bool plain) {
+    d->plain = plain;
+    d->fast_now = plain ? d->kernel : NULL;
+}
+
+void drive_use_fast_kernel(drive_segment *d, drive_fast_kernel *kernel) {
+    d->kernel = kernel;
+    plain_set(d, d->plain);
+}
+
 static void faults_apply(drive_segment *d) {
     d->fault = d->fault_next;
     if (d->stage != NULL) {
@@ -219,15 +230,15 @@ static void slow_boundary_apply(drive_segment *d) {
     if (d->trip_req != (uint8_t)DRIVE_TRIP_NONE && d->trip == (uint8_t)DRIVE_TRIP_NONE) {
         d->trip = d->trip_req;
     }
-    d->plain = d->plain_ok && d->fault.switch_open == 0u && d->fault.phase_open == 0u &&
-               d->trip == (uint8_t)DRIVE_TRIP_NONE;
+    plain_set(d, d->plain_ok && d->fault.switch_open == 0u && d->fault.phase_open == 0u &&
+                     d->trip == (uint8_t)DRIVE_TRIP_NONE);
 }
 
 void drive_medium_latch(drive_segment *d) {
     const drive_latch *o = &d->out;
     if (d->uv_req && d->trip == (uint8_t)DRIVE_TRIP_NONE) {
         d->trip = (uint8_t)DRIVE_TRIP_UNDERVOLTAGE;
-        d->plain = false;
+        plain_set(d, false);
     }
     pwm_rt_apply(&d->rt, &o->ramp);
     d->i_fast[0] += o->corr[0];

@@ -311,7 +311,7 @@ bool exec_fast_tick(exec *e) {
     if (e->state != EXEC_RUNNING) {
         return false;
     }
-    drive_fast_tick(&e->drive);
+    drive_fast_step(&e->drive);
     if (++e->fast_phase != e->fast_event_at) {
         return false;
     }

@@ -119,9 +119,12 @@ typedef struct {
 } exec_counters;
 
 typedef struct {
+    exec_state state;
+    /* Schedule: the fast tick's counters first, near the start (short offsets). */
+    uint32_t fast_phase;      /* fast steps since the last motor-frame boundary */
+    uint32_t fast_event_at;   /* fast_phase of the next boundary or staggered latch */
     exec_config cfg;
     const scenario *scn;
-    exec_state state;
     /* Frames. */
     uint32_t slow_per_report; /* slow frames per telemetry record */
     double slow_s;            /* [s] slow frame */
@@ -155,9 +158,7 @@ typedef struct {
                                * the slow step must not read speed_rpm, which the medium
                                * task may change while a preempted slow step runs */
     double shaft_start_rpm;   /* [rpm] shaft speed at the start of the slow frame */
-    /* Schedule. */
-    uint32_t fast_phase;      /* fast steps since the last motor-frame boundary */
-    uint32_t fast_event_at;   /* fast_phase of the next boundary or staggered latch */
+    /* Schedule (continued). */
     uint32_t stagger_at;      /* fast_phase of the staggered latch (0: not staggered) */
     uint32_t medium_phase;    /* motor frames since the last controller frame */
     uint32_t slow_phase;      /* motor frames since the last slow boundary */

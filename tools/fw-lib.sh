@@ -31,9 +31,15 @@ fw_sizes() { # IMAGE
 # $2/stack.txt. Returns 1 when it is unknown.
 fw_stack_static() { # IMAGE OUTDIR MACHINE
     objdir=$(dirname "$1")/obj
+    # The fast step's pointer call: the port's kernel where the image has one.
+    kernel=drive_fast_tick
+    if "$ARM_OBJDUMP" -t "$1" | grep -q ' drive_fast_kernel_v7m$'; then
+        kernel=drive_fast_kernel_v7m
+    fi
     # shellcheck disable=SC2046 # one .su file per object
     "$ARM_OBJDUMP" -d --no-show-raw-insn "$1" |
         "$FW_STACK" --frame "$(fw_frame_bytes "$3")" --call SysTick_Handler=fw_fast \
+            --call exec_fast_tick=$kernel \
             --call PendSV_Handler=fw_medium Reset_Handler PendSV_Handler SysTick_Handler \
             HardFault_Handler -- $(find "$objdir" -name '*.su' | sort) >"$2/stack.txt"
     rc=$?

@@ -8,7 +8,8 @@
 # Regions: fast (SysTick_Handler), medium (PendSV_Handler: the motor
 # task), control (Irq_Handler: the controller task), background
 # (fw_background_step), and, inside them, drive_fast (drive_fast_tick) and
-# controller (the controller's step). A region is
+# controller (the controller's step), and any function named in the
+# environment variable FW_PROFILE (space-separated). A region is
 # usable when every return of the function is an unconditional return
 # instruction and no branch leaves it (a tail call would end it without a
 # return); the tick handlers and the background step are written so, and
@@ -88,6 +89,15 @@ region fast isr SysTick_Handler required
 region medium isr PendSV_Handler required
 region background call fw_background_step required
 region control isr Irq_Handler required
-region drive_fast call drive_fast_tick
+# The drive's fast step: the port's kernel where the image has one.
+if [ -n "$(sym drive_fast_kernel_v7m)" ]; then
+    region drive_fast call drive_fast_kernel_v7m
+else
+    region drive_fast call drive_fast_tick
+fi
 region controller call "$control"
+# More functions to measure, by name (a profile of a task): FW_PROFILE="f g".
+for f in ${FW_PROFILE:-}; do
+    region "$f" call "$f"
+done
 exit $status

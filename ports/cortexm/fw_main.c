@@ -29,6 +29,7 @@
 #include "armv7m.h"
 #include "board.h"
 #include "executive.h"
+#include "fast_kernel.h"
 #include "hal/hal.h"
 #include "hal_cortexm.h"
 #include "scenario.h"
@@ -58,7 +59,7 @@ static scenario fw_scn;
 static exec_frame fw_report;
 static uint8_t fw_frame[TLM_FRAME_MAX];
 static uint16_t fw_seq;
-static uint32_t fw_fast_left; /* fast steps of the run still to do */
+static uint32_t fw_frames_left; /* motor frames of the run still to release */
 
 /*
  * A test build (FW_OVERRUN_TEST=1) accepts overrun=fast|medium|slow on the
@@ -88,13 +89,17 @@ static void fw_spin_once(int rate) {
 
 /* ---- Interrupt contexts -------------------------------------------------- */
 
-/* The fast tick: one fast step; at the run's last one, no further ticks. */
+/*
+ * The fast tick: one fast step. The run is a whole number of motor
+ * frames, so its last step is a boundary: the count of frames left,
+ * taken there, stops the ticks after it (off the common path).
+ */
 static void fw_fast(void) {
     if (exec_fast_tick(&fw_exec)) {
         hal_medium_release();
-    }
-    if (--fw_fast_left == 0u) {
-        hal_cm_fast_stop();
+        if (--fw_frames_left == 0u) {
+            hal_cm_fast_stop();
+        }
     }
     FW_SPIN(FW_RATE_FAST);
 }
@@ -281,12 +286,15 @@ __attribute__((noinline)) static bool fw_init(const fw_args *a, const char *path
                                              : "a model refused its parameters at these frames",
                        "");
     }
+#if FW_FAST_KERNEL
+    drive_use_fast_kernel(&fw_exec.drive, drive_fast_kernel_v7m);
+#endif
     const exec_config *c = &fw_exec.cfg;
     uint64_t steps = (uint64_t)fw_exec.frames * c->medium_per_slow * c->fast_per_medium;
     if (steps > 0xFFFFFFFFu) {
         return fw_fail("the run is longer than 2^32 fast steps", " (shorten the duration)");
     }
-    fw_fast_left = (uint32_t)steps;
+    fw_frames_left = (uint32_t)(steps / c->fast_per_medium);
     return true;
 }
 

@@ -1,0 +1,201 @@
+/*
+ * The fixed build's real-time fast tick in Thumb-2 for ARMv7-M (Cortex-M3,
+ * M4, M7): fast_tick_plain() of src/drive_segment_fixed.c, the same
+ * integer operations in the same order, so the same bits. The C stays the
+ * reference: the desk simulator runs it, tests/unit/test_fast_kernel.c
+ * runs both side by side on the target (states in and out of range), and
+ * make test compares the firmware's telemetry with the desk's byte for
+ * byte. What the kernel saves is the compiler's register spills and moves
+ * around the two filter phases (docs/firmware.md section 9).
+ *
+ *   void drive_fast_kernel_v7m(drive_segment *d);
+ *
+ * One step (see src/models/pwm_rt.h, power_stage_fast.h and
+ * power_stage_nodes.h for the arithmetic and its bounds):
+ *   - modulator: carrier c, legs s_x = sign bit of c - r_x (r_c = -r_a - r_b);
+ *   - inverter: v3 = hi(v_dc 0x55555555 + 2^31), u_x = n_x v3;
+ *   - per filter phase x: the companion j_L, the node's dv, the states
+ *     i_L, i_d, v, clamped to +-1 per unit and counted, j_sh from the
+ *     clamped states, T += dd_x (i_L(k) + i_L(k+1)); then the motor's
+ *     fast current and the frame sum of v;
+ *   - DC link: i_dc = floor((T + 1) / 2), v_dc by forward Euler, clamped;
+ *     the frame sum of v_dc.
+ * Every rounded product sum is SMLAL on a 64-bit accumulator that starts
+ * as base 2^32 + 2^31: its high word is base + round(sum / 2^32).
+ *
+ * The offsets come from fast_kernel_offsets.h, generated from the C
+ * declarations (fast_kernel_offsets.c).
+ */
+#include "fast_kernel_offsets.h"
+
+    .syntax unified
+    .thumb
+    .text
+
+/* 2^31, the rounding half of every accumulator. */
+#define HALF 0x80000000
+
+/*
+ * Clamps x to [-1, 1] per unit and counts it in the stage's saturation
+ * count (which stops at 2^32 - 1); t is a scratch register.
+ */
+    .macro CLAMP x, t
+    add     \t, \x, #Q28_ONE
+    cmp     \t, #(2 * Q28_ONE)
+    bls     1f
+    ldr     \t, [r0, #D_PS_SAT]
+    adds    \t, \t, #1
+    it      ne
+    strne   \t, [r0, #D_PS_SAT]
+    cmp     \x, #0
+    ite     gt
+    movgt   \x, #Q28_ONE
+    movle   \x, #-Q28_ONE
+1:
+    .endm
+
+/*
+ * Filter phase X (0 or 1) with the inverter voltage in U and the leg
+ * difference in DD; FIRST: T = DD S (phase a) else T += DD S (in r4).
+ * Registers: r0 d; r3 i_m; r6 i_L(k); r7 v; r8 i_d; r9 j_sh; lr j_L then
+ * i_L(k+1); r10, r11 coefficients; r12 the accumulator's low word.
+ */
+    .macro PHASE x, u, dd, first
+    ldrd    r6, r7, [r0, #(D_PS_PH + \x * PH_SIZE + PH_I_L)]
+    ldrd    r8, r9, [r0, #(D_PS_PH + \x * PH_SIZE + PH_I_D)]
+    ldrd    r10, r11, [r0, #(D_PS_K + K_NEG_EPS_L)]
+    /* j_L = hi((i_L 2^32 + 2^31) + i_L neg_eps_l + (u - v) g_l2) */
+    mov     r12, #HALF
+    mov     lr, r6
+    smlal   r12, lr, r6, r10
+    subs    \u, \u, r7
+    smlal   r12, lr, \u, r11
+    /* dv = hi(2^31 + (j_L + j_sh - i_m) k_node) */
+    ldr     r3, [r0, #(D_IFAST + 4 * \x)]
+    adds    r9, r9, lr
+    subs    r9, r9, r3
+    ldr     r10, [r0, #(D_PS_K + K_NODE)]
+    mov     r12, #HALF
+    movs    r11, #0
+    smlal   r12, r11, r9, r10
+    /* i_L(k+1) = hi((j_L 2^32 + 2^31) + dv neg_g_l) */
+    ldrd    r9, r10, [r0, #(D_PS_K + K_NEG_G_L)]
+    mov     r12, #HALF
+    smlal   r12, lr, r11, r9
+    /* i_d(k+1) = hi((i_d 2^32 + 2^31) + i_d neg_a_d + dv g_d) */
+    ldr     r9, [r0, #(D_PS_K + K_NEG_A_D)]
+    mov     r12, #HALF
+    smlal   r12, r8, r8, r9
+    smlal   r12, r8, r11, r10
+    /* v(k+1) = v + dv */
+    adds    r7, r7, r11
+    /* The three states within [-1, 1) per unit (the usual case), else clamped. */
+    add     r10, lr, #Q28_ONE
+    add     r11, r8, #Q28_ONE
+    orrs    r10, r10, r11
+    add     r11, r7, #Q28_ONE
+    orrs    r10, r10, r11
+    lsrs    r10, r10, #29
+    beq     2f
+    CLAMP   lr, r10
+    CLAMP   r8, r10
+    CLAMP   r7, r10
+2:
+    /* j_sh(k+1) = hi(((i_L - i_m - 2 i_d) 2^32 + 2^31) + i_d a_d), modulo 2^32 */
+    subs    r9, lr, r3
+    sub     r9, r9, r8, lsl #1
+    ldr     r10, [r0, #(D_PS_K + K_A_D)]
+    mov     r12, #HALF
+    smlal   r12, r9, r8, r10
+    strd    lr, r7, [r0, #(D_PS_PH + \x * PH_SIZE + PH_I_L)]
+    strd    r8, r9, [r0, #(D_PS_PH + \x * PH_SIZE + PH_I_D)]
+    /* T: the DC-link current's sum */
+    adds    r6, r6, lr
+    .if \first
+    mul     r4, \dd, r6
+    .else
+    mla     r4, \dd, r6, r4
+    .endif
+    /* The motor's fast current: i_m = hi((i_m 2^32 + 2^31) + (v - e) k32) */
+    ldr     r10, [r0, #(D_E + 4 * \x)]
+    ldr     r11, [r0, #D_K32]
+    subs    r10, r7, r10
+    mov     r12, #HALF
+    smlal   r12, r3, r10, r11
+    str     r3, [r0, #(D_IFAST + 4 * \x)]
+    /* The frame sum of v (64 bits) */
+    ldrd    r10, r11, [r0, #(D_SUM_VCAP + 8 * \x)]
+    adds    r10, r10, r7
+    adc     r11, r11, r7, asr #31
+    strd    r10, r11, [r0, #(D_SUM_VCAP + 8 * \x)]
+    .endm
+
+    .global drive_fast_kernel_v7m
+    .type   drive_fast_kernel_v7m, %function
+    .thumb_func
+drive_fast_kernel_v7m:
+    push    {r4-r11, lr}
+    /* Modulator: the carrier at ph (folded about its peak), ph += inc. */
+    ldrd    r2, r3, [r0, #D_RT_PH]
+    adds    r3, r2, r3
+    str     r3, [r0, #D_RT_PH]
+    lsrs    r1, r2, #7
+    cmp     r2, #0
+    it      lt
+    rsblt   r1, r1, #0x2000000
+    sub     r1, r1, #0x800000
+    /* References r_a, r_b at t_k; they advance by their slopes. */
+    ldrd    r2, r3, [r0, #D_RT_R]
+    ldrd    r4, r5, [r0, #D_RT_DR]
+    adds    r4, r2, r4
+    adds    r5, r3, r5
+    strd    r4, r5, [r0, #D_RT_R]
+    /* Legs: s_a (r4), s_b (r5), s_c (r6). */
+    subs    r4, r1, r2
+    lsrs    r4, r4, #31
+    subs    r5, r1, r3
+    lsrs    r5, r5, #31
+    adds    r6, r1, r2
+    adds    r6, r6, r3
+    lsrs    r6, r6, #31
+    strd    r4, r5, [r0, #D_S]
+    str     r6, [r0, #(D_S + 8)]
+    /* Inverter: v3 = hi(v_dc 0x55555555 + 2^31) (r3); u_a (r1), u_b (r2). */
+    ldr     r7, [r0, #D_PS_VDC]
+    ldr     r1, =0x55555555
+    mov     r2, #HALF
+    movs    r3, #0
+    smlal   r2, r3, r7, r1
+    rsb     r1, r5, r4, lsl #1
+    subs    r1, r1, r6
+    rsb     r2, r4, r5, lsl #1
+    subs    r2, r2, r6
+    mul     r1, r3, r1
+    mul     r2, r3, r2
+    strd    r1, r2, [r0, #D_PS_U]
+    /* dd_a = s_a - s_c (r4), dd_b = s_b - s_c (r5) */
+    subs    r4, r4, r6
+    subs    r5, r5, r6
+    PHASE   0, r1, r4, 1
+    PHASE   1, r2, r5, 0
+    /* DC-link current i_dc = floor((T + 1) / 2) */
+    adds    r4, r4, #1
+    asrs    r4, r4, #1
+    str     r4, [r0, #D_PS_IDC]
+    /* v_dc = hi((v_dc 2^32 + 2^31) + (e - v_dc) kg + i_dc neg_k_c), clamped */
+    ldr     r6, [r0, #D_PS_VDC]
+    ldrd    r7, r8, [r0, #D_BAT_E]
+    ldr     r9, [r0, #(D_PS_K + K_NEG_K_C)]
+    subs    r7, r7, r6
+    mov     r12, #HALF
+    smlal   r12, r6, r7, r8
+    smlal   r12, r6, r4, r9
+    CLAMP   r6, r7
+    str     r6, [r0, #D_PS_VDC]
+    ldrd    r7, r8, [r0, #D_SUM_VDC]
+    adds    r7, r7, r6
+    adc     r8, r8, r6, asr #31
+    strd    r7, r8, [r0, #D_SUM_VDC]
+    pop     {r4-r11, pc}
+    .ltorg
+    .size   drive_fast_kernel_v7m, . - drive_fast_kernel_v7m
