@@ -53,7 +53,6 @@
 #include <stdint.h>
 
 #include "models/drive_control.h"
-
 #include "models/induction_motor.h"
 #include "models/inverter_avg.h"
 #include "models/power_stage.h"
@@ -180,7 +179,8 @@ typedef enum {
 } drive_status;
 
 /*
- * A port's implementation of the real-time fast step (drive_use_fast_kernel).
+ * The drive segment (its fields per numeric build, below), and a port's
+ * implementation of its real-time fast step (drive_use_fast_kernel).
  */
 typedef struct drive_segment drive_segment;
 typedef void drive_fast_kernel(drive_segment *d);

@@ -3,7 +3,8 @@
  * (fast_kernel_v7m.S) uses, taken from the C declarations: compiled with
  * -S, each OFFSET line of the output becomes a #define of the generated
  * header fast_kernel_offsets.h (see the Makefile), so the kernel follows
- * the structures whatever their layout. Never linked.
+ * the declarations; it checks the adjacency its paired loads need. Never
+ * linked.
  */
 #include <stddef.h>
 

@@ -1,9 +1,10 @@
 /*
- * The fixed build's real-time fast tick in Thumb-2 for ARMv7-M (Cortex-M3,
- * M4, M7): fast_tick_plain() of src/drive_segment_fixed.c, the same
- * integer operations in the same order, so the same bits. The C stays the
- * reference: the desk simulator runs it, tests/unit/test_fast_kernel.c
- * runs both side by side on the target (states in and out of range), and
+ * The fixed build's real-time fast tick in Thumb-2 (ARMv7-M; linked into
+ * the Cortex-M4 and M7 images): fast_tick_plain() of
+ * src/drive_segment_fixed.c, the same integer operations in the same
+ * order, so the same bits. The C stays the reference: the desk simulator
+ * runs it, tests/unit/test_fast_kernel.c runs both side by side on the
+ * target (from random states, some at the clamp edge, so the clamps act), and
  * make test compares the firmware's telemetry with the desk's byte for
  * byte. What the kernel saves is the compiler's register spills and moves
  * around the two filter phases (docs/firmware.md section 9).
@@ -24,9 +25,18 @@
  * as base 2^32 + 2^31: its high word is base + round(sum / 2^32).
  *
  * The offsets come from fast_kernel_offsets.h, generated from the C
- * declarations (fast_kernel_offsets.c).
+ * declarations (fast_kernel_offsets.c). The paired loads and stores
+ * (LDRD, STRD) also need some fields next to each other; the checks below
+ * stop the build if a declaration moves them apart.
  */
 #include "fast_kernel_offsets.h"
+
+#if D_RT_INC != D_RT_PH + 4 || PH_V_C != PH_I_L + 4 || PH_J_SH != PH_I_D + 4
+#error "fast_kernel_v7m.S: the carrier's phase and increment, or a filter phase's states, are not adjacent"
+#endif
+#if K_G_L2 != K_NEG_EPS_L + 4 || K_G_D != K_NEG_G_L + 4 || D_BAT_KG != D_BAT_E + 4
+#error "fast_kernel_v7m.S: a pair of coefficients loaded together is not adjacent"
+#endif
 
     .syntax unified
     .thumb

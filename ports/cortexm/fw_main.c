@@ -294,7 +294,7 @@ __attribute__((noinline)) static bool fw_init(const fw_args *a, const char *path
     if (steps > 0xFFFFFFFFu) {
         return fw_fail("the run is longer than 2^32 fast steps", " (shorten the duration)");
     }
-    fw_frames_left = (uint32_t)(steps / c->fast_per_medium);
+    fw_frames_left = fw_exec.frames * c->medium_per_slow;
     return true;
 }
 
