@@ -28,13 +28,14 @@
  *   fast tick     drive_fast_tick() every fast step: one step of the power
  *                 stage with the inputs latched at the last boundary, and
  *                 the sums the slower segments need.
- *   boundary      drive_medium_latch() and drive_medium_publish(), called
- *                 by the fast tick at each motor-frame boundary: hands the frame's sums to the motor
- *                 (input buffer) and latches what the motor and controller
- *                 published (output buffers) as the fast inputs of the next
- *                 frame. Nothing a slower task writes reaches the fast step
- *                 except here, so results do not depend on where a fast
- *                 tick preempts the slower task.
+ *   boundary      drive_medium_publish() after a frame's last fast step
+ *                 and drive_medium_begin() before the next frame's first
+ *                 (the same fast tick or the next one): hands the frame's
+ *                 sums to the motor (input buffer) and latches what the
+ *                 motor and controller published (output buffers) as the
+ *                 fast inputs of the next frame. Nothing a slower task
+ *                 writes reaches the fast step except here, so results do
+ *                 not depend on where a fast tick preempts the slower task.
  *   medium task   drive_medium_task(): one motor step on the frame's input
  *                 buffer, the next frame's reference ramps and EMF, the slow
  *                 sums; at a control boundary it takes the controller's last
@@ -274,8 +275,10 @@ struct drive_segment {
     drive_slow_sums slow_out;   /* the last slow frame's, for the background */
     q31_t w_filt;               /* filtered shaft speed (COUPLE_FILTER) */
     ps_battery_q battery_next;  /* battery companion waiting for the next slow boundary */
-    bool battery_new;
-    drive_battery bat_next, bat_in_force, bat_done; /* the same in SI: next, now, last frame */
+    bool battery_new;           /* battery_next is new (background -> fast tick) */
+    bool battery_taken;         /* it took over at this slow boundary (fast tick -> motor task) */
+    drive_battery bat_next, bat_in_force, bat_done; /* the same in SI: next, now, last frame
+                                 * (the motor task's bookkeeping at a slow boundary) */
     uint32_t ps_clamps;         /* battery companion values clamped by the power stage */
     /* Faults: requested by the slow segment, applied at a slow boundary. */
     drive_faults fault, fault_next;
@@ -289,6 +292,7 @@ struct drive_segment {
     uint8_t trip_req;           /* a trip the background requested, applied at a slow boundary */
     bool uv_req;                /* the motor task saw an under-voltage (latched next) */
     bool plain_ok;              /* the configuration allows the real-time path */
+    bool staggered;             /* the latch comes half a frame after the release */
     drive_fast_kernel *kernel;  /* a port's real-time step, or NULL (drive_use_fast_kernel) */
 };
 
@@ -368,6 +372,7 @@ struct drive_segment {
     float w_filt;
     ps_battery_f32 battery_next;
     bool battery_new;
+    bool battery_taken;
     drive_battery bat_next, bat_in_force, bat_done;
     uint32_t ps_clamps;
     /* Faults: requested by the slow segment, applied at a slow boundary. */
@@ -381,6 +386,7 @@ struct drive_segment {
     uint8_t trip_req;
     bool uv_req;
     bool plain_ok;
+    bool staggered;
     drive_fast_kernel *kernel;
 };
 
@@ -412,15 +418,29 @@ static inline void drive_fast_step(drive_segment *d) {
 }
 
 /*
- * The motor-frame boundary, called from the fast tick, in two halves: the
- * latch takes what the motor task published (the next frame's reference
- * ramps, EMF and current correction), the publish hands the frame's sums to
- * the next motor task. Without staggering both happen at the boundary,
- * latch first; with staggering the latch comes half a frame after the
- * publish. Both are a few copies: the motor task prepares everything.
+ * The motor-frame boundary, called from the fast tick in two halves, with
+ * no fast step between them; the motor task may start after the second.
+ * - drive_medium_publish(), after the frame's last fast step, hands the
+ *   frame's sums to the next motor task.
+ * - drive_medium_begin(), before the next frame's first fast step, latches
+ *   what the motor task published (the next frame's reference ramps, EMF
+ *   and current correction; with staggering that comes half a frame later,
+ *   drive_medium_latch()) and marks the fast current the frame starts
+ *   from; at a slow boundary it applies the faults and trips requested and
+ *   the next battery companion takes over. The averaged layer forms its
+ *   frame here.
+ * The halves may run in one fast tick or in two consecutive ones (the
+ * executive's choice, to spread the boundary's work): the results are the
+ * same. Each is a few copies: the motor task prepares everything.
  */
+void drive_medium_publish(drive_segment *d);
+void drive_medium_begin(drive_segment *d, bool slow_boundary);
 void drive_medium_latch(drive_segment *d);
-void drive_medium_publish(drive_segment *d, bool slow_boundary);
+
+/* True when the motor task's results take effect half a frame after its release (stagger). */
+static inline bool drive_staggered(coupling_down down, uint32_t fast_per_medium) {
+    return down == COUPLE_STAGGER && fast_per_medium >= 2u;
+}
 
 /*
  * The motor task: one motor step, the next frame's references and EMF.

@@ -73,6 +73,7 @@ drive_status drive_init(drive_segment *d, const drive_config *cfg, const propell
                (cfg->down == COUPLE_ZOH || cfg->down == COUPLE_STAGGER) &&
                (cfg->up != COUPLE_FILTER) && !cfg->energy_audit;
     d->plain = d->plain_ok;
+    d->staggered = drive_staggered(cfg->down, cfg->fast_per_medium);
     if (induction_motor_load_f32(&d->motor, 1.0, &d->load_next) != INDUCTION_MOTOR_OK) {
         return DRIVE_ERR_MODEL;
     }
@@ -152,7 +153,7 @@ static void faulted_states(drive_segment *d) {
 static void fast_tick_general(drive_segment *d) __attribute__((noinline));
 static void fast_tick_general(drive_segment *d) {
     if (d->cfg.inverter == DRIVE_INVERTER_AVERAGED) {
-        return; /* the averaged layer's stage runs at the boundary (drive_medium_publish) */
+        return; /* the averaged layer's stage runs at the boundary (drive_medium_begin) */
     }
     if (d->cfg.inverter == DRIVE_INVERTER_SWITCHING) {
         /* As in drive_segment_fixed.c: the real-time step with the faults' states. */
@@ -224,6 +225,9 @@ static void faults_apply(drive_segment *d) {
 
 /* What the slow boundary changes besides the battery (as in drive_segment_fixed.c). */
 static void slow_boundary_apply(drive_segment *d) {
+    if (!d->fault_new && d->trip_req == (uint8_t)DRIVE_TRIP_NONE) {
+        return;
+    }
     if (d->fault_new) {
         faults_apply(d);
     }
@@ -234,7 +238,8 @@ static void slow_boundary_apply(drive_segment *d) {
                      d->trip == (uint8_t)DRIVE_TRIP_NONE);
 }
 
-void drive_medium_latch(drive_segment *d) {
+/* What the motor task published takes effect (the latch; inline in the boundary's second half). */
+static inline void latch_apply(drive_segment *d) {
     const drive_latch *o = &d->out;
     if (d->uv_req && d->trip == (uint8_t)DRIVE_TRIP_NONE) {
         d->trip = (uint8_t)DRIVE_TRIP_UNDERVOLTAGE;
@@ -255,49 +260,22 @@ void drive_medium_latch(drive_segment *d) {
     }
 }
 
-/* The averaged layer's boundary, as in drive_segment_fixed.c (out of line, as there). */
-__attribute__((noinline)) static void publish_averaged(drive_segment *d, bool slow_boundary) {
-    inverter_qs_step_f32(&d->qs, &d->bus, d->i_fast[0], d->i_fast[1]);
-    if (slow_boundary) {
-        d->bat_done = d->bat_in_force;
-        if (d->battery_new) {
-            d->bus = d->bus_next;
-            d->bat_in_force = d->bat_next;
-            d->battery_new = false;
-        }
-        slow_boundary_apply(d);
-    }
-    drive_frame_sums *m = &d->medium_in;
-    for (int x = 0; x < 2; x++) {
-        m->v_cap[x] = d->qs.u[x];
-        m->v_mark[x] = d->qs.u[x];
-        m->filt_mark[x] = d->qs.u[x];
-        m->i_mark[x] = d->i_fast[x];
-    }
-    m->v_dc = d->qs.v_dc;
-    m->sat = d->qs.sat_count;
+void drive_medium_latch(drive_segment *d) { latch_apply(d); }
+
+/* At a slow boundary: the battery companion waiting takes over (fast context). */
+static inline void battery_take(drive_segment *d) {
+    d->battery_new = false;
+    d->battery_taken = true;
 }
 
-void drive_medium_publish(drive_segment *d, bool slow_boundary) {
+void drive_medium_publish(drive_segment *d) {
     if (d->stage == NULL) {
-        publish_averaged(d, slow_boundary);
-        return;
-    }
-    if (slow_boundary) {
-        d->bat_done = d->bat_in_force;
-        if (d->battery_new) {
-            d->in.battery = d->battery_next;
-            d->bat_in_force = d->bat_next;
-            d->battery_new = false;
-        }
-        slow_boundary_apply(d);
+        return; /* the averaged layer forms its frame in drive_medium_begin() */
     }
     drive_frame_sums *m = &d->medium_in;
     m->v_cap[0] = d->sums.v_cap[0];
     m->v_cap[1] = d->sums.v_cap[1];
     m->v_dc = d->sums.v_dc;
-    m->i_mark[0] = d->i_fast[0];
-    m->i_mark[1] = d->i_fast[1];
     m->v_mark[0] = d->stage->ph[0].v_c;
     m->v_mark[1] = d->stage->ph[1].v_c;
     if (d->cfg.up == COUPLE_FILTER) {
@@ -314,6 +292,44 @@ void drive_medium_publish(drive_segment *d, bool slow_boundary) {
     d->sums.v_cap[0] = 0.0f;
     d->sums.v_cap[1] = 0.0f;
     d->sums.v_dc = 0.0f;
+}
+
+/* The averaged layer's frame, as in drive_segment_fixed.c (out of line, as there). */
+__attribute__((noinline)) static void begin_averaged(drive_segment *d, bool slow_boundary) {
+    inverter_qs_step_f32(&d->qs, &d->bus, d->i_fast[0], d->i_fast[1]);
+    if (slow_boundary && d->battery_new) {
+        d->bus = d->bus_next;
+        battery_take(d);
+    }
+    drive_frame_sums *m = &d->medium_in;
+    for (int x = 0; x < 2; x++) {
+        m->v_cap[x] = d->qs.u[x];
+        m->v_mark[x] = d->qs.u[x];
+        m->filt_mark[x] = d->qs.u[x];
+        m->i_mark[x] = d->i_fast[x];
+    }
+    m->v_dc = d->qs.v_dc;
+    m->sat = d->qs.sat_count;
+}
+
+void drive_medium_begin(drive_segment *d, bool slow_boundary) {
+    if (!d->staggered) {
+        latch_apply(d);
+    }
+    if (slow_boundary) {
+        slow_boundary_apply(d);
+    }
+    if (d->stage == NULL) {
+        begin_averaged(d, slow_boundary);
+        return;
+    }
+    if (slow_boundary && d->battery_new) {
+        /* One battery companion holds over each whole slow frame. */
+        d->in.battery = d->battery_next;
+        battery_take(d);
+    }
+    d->medium_in.i_mark[0] = d->i_fast[0];
+    d->medium_in.i_mark[1] = d->i_fast[1];
 }
 
 /* As in drive_segment_fixed.c: the frame's EMF and its change per fast step [V]. */
@@ -429,6 +445,11 @@ void drive_medium_task(drive_segment *d, bool control_due, bool slow_boundary) {
         d->ref_ph += d->cmd.phase_inc * n;
     }
     if (slow_boundary) {
+        d->bat_done = d->bat_in_force;
+        if (d->battery_taken) {
+            d->bat_in_force = d->bat_next;
+            d->battery_taken = false;
+        }
         drive_slow_sums *w = &d->slow;
         w->w_filt = d->w_filt;
         w->w_end = d->mout.w_radps;

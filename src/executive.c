@@ -7,6 +7,14 @@
 
 #define RPM_TO_RADPS (3.14159265358979323846 / 30.0)
 
+/*
+ * The fast step after which a split boundary releases the motor task: the
+ * frame's second, so that the boundary's work lies in three ticks (its
+ * halves after the frame's last step and before the next frame's first,
+ * the release after the second).
+ */
+#define EXEC_SPLIT_RELEASE_AT 2u
+
 const char *const exec_command_names[EXEC_NCMD] = {
     "delta_r_cmd_rad", "delta_s_cmd_rad", "delta_bp_cmd_rad", "delta_bs_cmd_rad", "n_cmd_rpm",
 };
@@ -135,6 +143,15 @@ static double speed_command_at(exec *e, double t) {
 
 /* ---- Initialisation ------------------------------------------------------ */
 
+/* Counts a motor-frame boundary to come; true when it is a slow boundary too. */
+static bool slow_count(exec *e) {
+    bool slow = (++e->slow_phase == e->cfg.medium_per_slow);
+    if (slow) {
+        e->slow_phase = 0u;
+    }
+    return slow;
+}
+
 static exec_status init_frames(exec *e, const exec_config *cfg, double duration) {
     exec_config *c = &e->cfg;
     if (cfg->fast_ns < 100u || cfg->fast_per_medium == 0u || cfg->medium_per_control == 0u ||
@@ -175,9 +192,15 @@ static exec_status init_frames(exec *e, const exec_config *cfg, double duration)
         return EXEC_ERR_CONFIG;
     }
     e->frames = (uint32_t)(reports * e->slow_per_report);
-    e->stagger_at = (cfg->down == COUPLE_STAGGER && c->fast_per_medium >= 2u)
-                        ? c->fast_per_medium / 2u : 0u;
+    uint64_t medium_frames = (uint64_t)e->frames * c->medium_per_slow;
+    if (cfg->plant == EXEC_PLANT_FULL && medium_frames > 0xFFFFFFFFu) {
+        return EXEC_ERR_CONFIG;
+    }
+    e->medium_frames = e->medium_left = (uint32_t)medium_frames;
+    e->stagger_at = drive_staggered(cfg->down, c->fast_per_medium) ? c->fast_per_medium / 2u : 0u;
+    e->split = (e->stagger_at == 0u && c->fast_per_medium > EXEC_SPLIT_RELEASE_AT);
     e->fast_event_at = (e->stagger_at != 0u) ? e->stagger_at : c->fast_per_medium;
+    e->slow_due = slow_count(e);
     return EXEC_OK;
 }
 
@@ -262,20 +285,53 @@ exec_status exec_init(exec *e, const exec_config *cfg, const scenario *scn) {
 
 /* ---- Fast and medium rates ----------------------------------------------- */
 
+/* The run ends: the state says why, and the fast ticks do nothing more. */
+static void exec_end(exec *e, exec_state why) {
+    e->state = why;
+    e->fast_gate = EXEC_GATE_STOP;
+}
+
 /* A slower task still running when its results are due ends the run. */
 static void overrun(exec *e, uint32_t *counter) {
     (*counter)++;
-    e->state = EXEC_STOP_OVERRUN;
+    exec_end(e, EXEC_STOP_OVERRUN);
+}
+
+/* The boundary's second half (decided at the last release: slow_due). */
+static inline void boundary_begin(exec *e) {
+    e->rel_slow = e->slow_due;
+    drive_medium_begin(&e->drive, e->slow_due);
+}
+
+/* The motor task's release, once both halves of the boundary have run. */
+static bool medium_release(exec *e) {
+    uint32_t n = e->cfg.fast_per_medium;
+    e->fast_event_at = (e->stagger_at != 0u) ? e->stagger_at : n;
+    e->slow_due = slow_count(e);
+    e->medium_busy = true;
+    return true;
 }
 
 /*
- * A fast tick's event: the staggered latch half a frame after the release,
- * or the motor-frame boundary, where the motor task is released. Out of
- * the fast tick's common path.
+ * A fast tick's event, after its step, out of the tick's common path:
+ * - At a motor-frame boundary (fast_phase n): the boundary's first half,
+ *   drive_medium_publish(). Its second half (boundary_begin()) and the
+ *   motor task's release follow in the same tick, or, when split, before
+ *   the next tick's step and after the one after that. Split, no tick
+ *   carries the whole boundary, which on a Cortex-M is more than a fast
+ *   frame's slack (docs/firmware.md); the results are the same, as no
+ *   step runs between the halves and the motor task reads only what they
+ *   wrote. After the run's last boundary one more tick runs the second
+ *   half and the release, without a step (fast_last()).
+ * - Split, EXEC_SPLIT_RELEASE_AT steps into the frame: the release.
+ * - Staggered, half a frame after the release: the latch.
  */
 static bool fast_event(exec *e) {
     uint32_t n = e->cfg.fast_per_medium;
     if (e->fast_phase < n) {
+        if (e->split) {
+            return medium_release(e);
+        }
         /* Staggered: the motor task's results arrive half a frame after its release. */
         e->fast_event_at = n;
         if (e->medium_busy) {
@@ -286,30 +342,40 @@ static bool fast_event(exec *e) {
         return false;
     }
     e->fast_phase = 0u;
-    e->fast_event_at = (e->stagger_at != 0u) ? e->stagger_at : n;
-    e->count.fast += n;
+    e->medium_left--;
     if (e->medium_busy) {
         overrun(e, &e->count.overruns_medium);
         return false;
     }
-    bool slow = (++e->slow_phase == e->cfg.medium_per_slow);
-    if (slow) {
-        e->slow_phase = 0u;
+    drive_medium_publish(&e->drive);
+    if (e->split) {
+        e->fast_gate = (e->medium_left != 0u) ? EXEC_GATE_BEGIN : EXEC_GATE_LAST;
+        e->fast_event_at = EXEC_SPLIT_RELEASE_AT;
+        return false;
     }
-    /* Latch before publish: the publish marks the fast currents the next
-     * motor task compares with its own, corrections included. */
-    if (e->stagger_at == 0u) {
-        drive_medium_latch(&e->drive);
+    boundary_begin(e);
+    if (e->medium_left == 0u) {
+        e->fast_gate = EXEC_GATE_STOP; /* the run's last fast step */
     }
-    drive_medium_publish(&e->drive, slow);
-    e->rel_slow = slow;
-    e->medium_busy = true;
-    return true;
+    return medium_release(e);
+}
+
+/* The second half of the run's last boundary, split: a tick of its own, with no step. */
+static bool fast_last(exec *e) {
+    e->fast_gate = EXEC_GATE_STOP;
+    boundary_begin(e);
+    return medium_release(e);
 }
 
 bool exec_fast_tick(exec *e) {
-    if (e->state != EXEC_RUNNING) {
-        return false;
+    uint8_t gate = e->fast_gate;
+    if (gate != 0u) {
+        /* Work before the step: the boundary's second half, or no step at all. */
+        if (gate != EXEC_GATE_BEGIN) {
+            return gate == EXEC_GATE_LAST && fast_last(e);
+        }
+        e->fast_gate = 0u;
+        boundary_begin(e);
     }
     drive_fast_step(&e->drive);
     if (++e->fast_phase != e->fast_event_at) {
@@ -508,7 +574,7 @@ void exec_slow_step(exec *e) {
         make_report(e);
     }
     if (e->frame >= e->frames) {
-        e->state = EXEC_DONE;
+        exec_end(e, EXEC_DONE);
     }
     e->slow_pending = false;
 }
@@ -546,6 +612,9 @@ uint32_t exec_overruns(const exec *e) {
     return e->count.overruns_medium + e->count.overruns_control + e->count.overruns_slow;
 }
 
-uint64_t exec_fast_steps(const exec *e) { return e->count.fast + e->fast_phase; }
+uint64_t exec_fast_steps(const exec *e) {
+    uint32_t frames = e->medium_frames - e->medium_left;
+    return (uint64_t)frames * e->cfg.fast_per_medium + e->fast_phase;
+}
 
 const manoeuvre_result *exec_manoeuvre(const exec *e) { return &e->man.r; }

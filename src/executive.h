@@ -21,7 +21,11 @@
  * effect at a slow boundary. A slower task that is still running when its
  * results are due is an overrun: it is counted and ends the run (the
  * results would otherwise depend on timing), never silently. On the desk,
- * where the tasks run in sequence, there are none.
+ * where the tasks run in sequence, there are none. A boundary's work is
+ * spread over the ticks around it (the publish after the frame's last
+ * step, the latch before the next frame's first, the release after its
+ * second; fast_event() in executive.c), so that no tick carries it all;
+ * the results are those of doing it at once.
  *
  * The averaged layer (inverter averaged, inverter_avg.h) runs its
  * quasi-static stage and the motor together at the controller's frame
@@ -112,8 +116,7 @@ typedef struct {
     double e_loss_filter_j; /* [J] LC filter losses (energy audit only) */
     double e_loss_motor_j;  /* [J] motor copper losses (energy audit only) */
     double limit_s;       /* [s] time the drive's torque (slip) limit acted */
-    uint64_t fast;        /* fast steps run, counted at motor-frame boundaries (exec_fast_steps) */
-    uint64_t medium, control, slow; /* steps run */
+    uint64_t medium, control, slow; /* steps run (the fast ones: exec_fast_steps()) */
     uint32_t overruns_medium, overruns_control, overruns_slow;
     uint32_t saturations; /* fixed-point saturation events (fast models) */
 } exec_counters;
@@ -121,8 +124,10 @@ typedef struct {
 typedef struct {
     exec_state state;
     /* Schedule: the fast tick's counters first, near the start (short offsets). */
+    volatile uint8_t fast_gate; /* EXEC_GATE_*: work before the next fast step (0: none) */
     uint32_t fast_phase;      /* fast steps since the last motor-frame boundary */
-    uint32_t fast_event_at;   /* fast_phase of the next boundary or staggered latch */
+    uint32_t fast_event_at;   /* fast_phase of the tick's next event (fast_event()) */
+    uint32_t medium_left;     /* motor frames of the run not yet ended */
     exec_config cfg;
     const scenario *scn;
     /* Frames. */
@@ -160,11 +165,13 @@ typedef struct {
     double shaft_start_rpm;   /* [rpm] shaft speed at the start of the slow frame */
     /* Schedule (continued). */
     uint32_t stagger_at;      /* fast_phase of the staggered latch (0: not staggered) */
+    bool split;               /* the boundary's halves run in two fast ticks (exec_fast_tick) */
     uint32_t medium_phase;    /* motor frames since the last controller frame */
-    uint32_t slow_phase;      /* motor frames since the last slow boundary */
+    uint32_t slow_phase;      /* boundaries counted since the last slow one (slow_count) */
     volatile bool medium_busy;
     volatile bool control_busy;
     volatile bool slow_pending;
+    bool slow_due;              /* the next motor-frame boundary is a slow one */
     bool rel_slow;              /* the released medium task is at a slow boundary */
     uint64_t control_time_ns;   /* release time of the controller task */
     drive_slow_meas meas;       /* the slow frame's measurements (medium task -> slow) */
@@ -175,6 +182,7 @@ typedef struct {
     exec_frame report;
     bool report_ready;
     exec_counters count;
+    uint32_t medium_frames;     /* motor frames in the run (full plant) */
 } exec;
 
 extern const char *const exec_command_names[EXEC_NCMD];
@@ -185,8 +193,23 @@ void exec_config_default(exec_config *cfg);
 /* Checks the configuration against the scenario and initialises every model. */
 exec_status exec_init(exec *e, const exec_config *cfg, const scenario *scn);
 
-/* The fast tick; true when it released the medium task. */
+/*
+ * The fast tick; true when it released the medium task. Once the run's
+ * last fast step and the release after it have run (exec_fast_ended(),
+ * true right after that release) it does nothing: a port stops its timer
+ * then.
+ */
 bool exec_fast_tick(exec *e);
+
+/* Work a fast tick does before its step (exec.fast_gate). */
+#define EXEC_GATE_STOP 1u  /* no more fast steps: the run ended or stopped */
+#define EXEC_GATE_BEGIN 2u /* the second half of a motor-frame boundary */
+#define EXEC_GATE_LAST 4u  /* that of the run's last boundary, without a step */
+
+/* True once the run's fast ticks are over (or the run stopped). */
+static inline bool exec_fast_ended(const exec *e) {
+    return (e->fast_gate & EXEC_GATE_STOP) != 0u;
+}
 
 /* The medium (motor) task; true when it released the controller task. */
 bool exec_medium_tick(exec *e);

@@ -148,8 +148,14 @@ static void leave(int r) {
     uint64_t inclusive = n_insns - f.start;
     record(r, f.marks, inclusive - f.hidden);
     if (regions[r].isr) {
-        for (int i = 0; i < depth; i++) {
+        /* Hidden from the frames it preempted, down to the handler it
+         * preempted: that one's own count includes this one's, and passes
+         * it on to the frames below when it ends. */
+        for (int i = depth - 1; i >= 0; i--) {
             stack[i].hidden += inclusive;
+            if (regions[stack[i].region].isr) {
+                break;
+            }
         }
     }
 }

@@ -59,7 +59,6 @@ static scenario fw_scn;
 static exec_frame fw_report;
 static uint8_t fw_frame[TLM_FRAME_MAX];
 static uint16_t fw_seq;
-static uint32_t fw_frames_left; /* motor frames of the run still to release */
 
 /*
  * A test build (FW_OVERRUN_TEST=1) accepts overrun=fast|medium|slow on the
@@ -91,13 +90,14 @@ static void fw_spin_once(int rate) {
 
 /*
  * The fast tick: one fast step. The run is a whole number of motor
- * frames, so its last step is a boundary: the count of frames left,
- * taken there, stops the ticks after it (off the common path).
+ * frames, so its last step is a boundary, where the motor task is
+ * released: the executive says there that the run's steps are done, and
+ * the ticks stop (off the common path).
  */
 static void fw_fast(void) {
     if (exec_fast_tick(&fw_exec)) {
         hal_medium_release();
-        if (--fw_frames_left == 0u) {
+        if (exec_fast_ended(&fw_exec)) {
             hal_cm_fast_stop();
         }
     }
@@ -294,41 +294,43 @@ __attribute__((noinline)) static bool fw_init(const fw_args *a, const char *path
     if (steps > 0xFFFFFFFFu) {
         return fw_fail("the run is longer than 2^32 fast steps", " (shorten the duration)");
     }
-    fw_frames_left = fw_exec.frames * c->medium_per_slow;
     return true;
 }
 
 /* ---- The run ----------------------------------------------------------------- */
 
 /*
- * The background loop. With FW_IDLE_WFI it sleeps between interrupts, as
- * a board would to save power: the test and the sleep happen with
- * interrupts masked, and an interrupt that arrives in between still ends
- * the WFI (a pending interrupt wakes the core whatever PRIMASK says), so
- * no wake-up is lost. By default it polls instead: under QEMU's -icount
- * every wake-up from WFI costs the emulator a hand-off between its
- * threads, which makes a run some 50 times slower, while polling costs
- * only instructions, and those are what virtual time is made of. The
- * results are the same either way.
+ * The background loop. By default it polls, with interrupts enabled: the
+ * flags it reads are single loads, and a stale one only costs another
+ * turn of the loop, so the fast tick never waits for it. With FW_IDLE_WFI
+ * it sleeps between interrupts, as a board would to save power: the last
+ * test and the sleep happen with interrupts masked, and an interrupt that
+ * arrives in between still ends the WFI (a pending interrupt wakes the
+ * core whatever PRIMASK says), so no wake-up is lost; the masked test
+ * delays a tick by a few instructions. Under QEMU's -icount every wake-up
+ * from WFI costs the emulator a hand-off between its threads, which makes
+ * a run some 50 times slower, while polling costs only instructions, and
+ * those are what virtual time is made of. The results are the same either
+ * way.
  */
 #ifndef FW_IDLE_WFI
 #define FW_IDLE_WFI 0
 #endif
 
+static bool fw_stopping(void) {
+    return fw_exec.state != EXEC_RUNNING || hal_cm_fast_overruns() != 0u;
+}
+
 static void fw_background(void) {
-    for (;;) {
-        hal_critical_enter();
-        bool stop = fw_exec.state != EXEC_RUNNING || hal_cm_fast_overruns() != 0u;
-        bool due = !stop && exec_slow_pending(&fw_exec);
-        if (FW_IDLE_WFI && !stop && !due) {
-            hal_wait_for_tick();
-        }
-        hal_critical_exit();
-        if (stop) {
-            return;
-        }
-        if (due) {
+    while (!fw_stopping()) {
+        if (exec_slow_pending(&fw_exec)) {
             fw_background_step();
+        } else if (FW_IDLE_WFI) {
+            hal_critical_enter();
+            if (!fw_stopping() && !exec_slow_pending(&fw_exec)) {
+                hal_wait_for_tick();
+            }
+            hal_critical_exit();
         }
     }
 }

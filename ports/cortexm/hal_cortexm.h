@@ -25,9 +25,10 @@ uint32_t hal_cm_fast_overruns(void);
 void hal_cm_stop_on_overrun(bool stop);
 
 /*
- * Stops the fast tick from inside its handler after the run's last step.
- * Unlike hal_ticks_stop() it leaves a medium tick that step released
- * pending, so that it still runs.
+ * Stops the fast tick from inside its handler after the run's last step,
+ * clearing a tick that fell due meanwhile (it is not a step of the run, so
+ * not an overrun). Unlike hal_ticks_stop() it leaves a medium tick that
+ * step released pending, so that it still runs.
  */
 void hal_cm_fast_stop(void);
 

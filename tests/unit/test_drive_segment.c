@@ -99,8 +99,8 @@ static void run_frames(drive_segment *d, run_log *g, uint32_t frames) {
         bool control = (++g->medium_phase == c->medium_per_control);
         g->slow_phase = slow ? 0u : g->slow_phase;
         g->medium_phase = control ? 0u : g->medium_phase;
-        drive_medium_latch(d);
-        drive_medium_publish(d, slow);
+        drive_medium_publish(d);
+        drive_medium_begin(d, slow);
         drive_medium_task(d, control, slow);
         if (control) {
             drive_control_task(d);

@@ -491,7 +491,7 @@ static void test_single_rate(void) {
     c.single_rate = true;
     UT_EQ_INT(run(&c), EXEC_OK);
     UT_EQ_INT(ex.state, EXEC_DONE);
-    UT_EQ_INT(ex.count.fast, 80);
+    UT_EQ_INT(exec_fast_steps(&ex), 80);
     UT_EQ_INT(ex.count.medium, 80);
     UT_EQ_INT(ex.count.slow, 80);
     UT_EQ_INT(ex.count.control, 2);
@@ -501,8 +501,6 @@ static void test_single_rate(void) {
     UT_NEAR(exec_time_s(&ex), 160e-6, 1e-15);
     UT_NEAR(recs[2].v_dc_v, recs[0].v_dc_v, 1.0);
 }
-
-/* ---- Overruns ----------------------------------------------------------- */
 
 /* Fast ticks without running what they release; returns the tick that released last. */
 static uint32_t ticks_only(uint32_t n) {
@@ -515,6 +513,100 @@ static uint32_t ticks_only(uint32_t n) {
     return released_at;
 }
 
+/* ---- The boundary's schedule -------------------------------------------- */
+
+/* The run to its end in the desk's order, the boundaries as the executive splits them or
+ * all in one tick; the last record. */
+static exec_frame run_split(const exec_config *c, bool split) {
+    exec_frame last = {0};
+    if (exec_init(&ex, c, &scn) != EXEC_OK) {
+        return last;
+    }
+    ex.split = ex.split && split;
+    while (ex.state == EXEC_RUNNING) {
+        exec_desk_step(&ex);
+        (void)exec_report_take(&ex, &last);
+    }
+    return last;
+}
+
+static bool same_record(const exec_frame *a, const exec_frame *b) {
+    bool same = a->index == b->index && a->te_nm == b->te_nm && a->i_rms_a == b->i_rms_a &&
+                a->v_dc_v == b->v_dc_v && a->i_batt_a == b->i_batt_a && a->soc == b->soc &&
+                a->m_index == b->m_index && a->f_hz == b->f_hz;
+    for (int i = 0; i < VESSEL_NSTATES; i++) {
+        same = same && a->x[i] == b->x[i];
+    }
+    return same;
+}
+
+static void test_split_boundary(void) {
+    UT_CHECK(load("duration 0.0016\nat 0 n_rpm=1000\n"));
+    exec_config c;
+    config_small(&c);
+
+    UT_TEST("split boundary: the publish after a frame's last step, the latch before the "
+            "next frame's first, the motor task's release after its second");
+    UT_EQ_INT(exec_init(&ex, &c, &scn), EXEC_OK);
+    UT_CHECK(ex.split);
+    UT_EQ_INT(ticks_only(49u), 0);
+    UT_CHECK(!exec_fast_tick(&ex)); /* step 50: the publish */
+    UT_EQ_INT(ex.fast_gate, EXEC_GATE_BEGIN);
+    UT_CHECK(!exec_fast_tick(&ex)); /* the latch, step 51 */
+    UT_EQ_INT(ex.fast_gate, 0);
+    UT_CHECK(!ex.medium_busy);
+    UT_CHECK(exec_fast_tick(&ex)); /* step 52: the release */
+    UT_CHECK(ex.medium_busy);
+    UT_EQ_INT(exec_fast_steps(&ex), 52);
+
+    UT_TEST("the run's last boundary: one more tick, without a step, runs the second half and "
+            "releases the last motor task; then the fast ticks are over");
+    (void)exec_medium_tick(&ex);
+    uint32_t released = 1u;
+    for (uint32_t k = 0u; k < 2000u && !exec_fast_ended(&ex); k++) {
+        if (exec_fast_tick(&ex)) {
+            released++;
+            if (!exec_fast_ended(&ex) && exec_medium_tick(&ex)) {
+                exec_control_tick(&ex);
+            }
+        }
+        if (exec_slow_pending(&ex)) {
+            exec_slow_step(&ex);
+        }
+    }
+    UT_CHECK(exec_fast_ended(&ex));
+    UT_EQ_INT(released, 16); /* every motor frame of 1.6 ms */
+    UT_EQ_INT(exec_fast_steps(&ex), 800);
+    UT_CHECK(ex.medium_busy);
+    UT_CHECK(!exec_fast_tick(&ex));
+    UT_EQ_INT(exec_fast_steps(&ex), 800);
+    UT_CHECK(exec_medium_tick(&ex)); /* the last motor task: a controller frame too */
+    exec_control_tick(&ex);
+    UT_CHECK(exec_slow_pending(&ex));
+    exec_slow_step(&ex);
+    UT_EQ_INT(ex.state, EXEC_DONE);
+    UT_EQ_INT(exec_overruns(&ex), 0);
+
+    UT_TEST("split or in one tick, the boundary gives the same bits: default, staggered, "
+            "first-order hold, sampled, event inverter, a fault");
+    static const char *const names[] = {"default", "staggered", "first-order hold", "sampled",
+                                        "event inverter", "switch_open at 4 ms"};
+    for (int k = 0; k < 6; k++) {
+        config_small(&c);
+        c.down = (k == 1) ? COUPLE_STAGGER : (k == 2) ? COUPLE_FOH : COUPLE_ZOH;
+        c.up = (k == 3) ? COUPLE_SAMPLE : COUPLE_AVG;
+        c.inverter = (k == 4) ? DRIVE_INVERTER_EVENT : DRIVE_INVERTER_SWITCHING;
+        UT_CHECK(load((k == 5) ? "duration 0.008\nat 0 n_rpm=1000\nat 0.004 switch_open=a+\n"
+                               : "duration 0.008\nat 0 n_rpm=1000\n"));
+        exec_frame a = run_split(&c, true);
+        exec_frame b = run_split(&c, false);
+        ut_info("%-22s i_rms %.6f A, v_dc %.4f V", names[k], a.i_rms_a, a.v_dc_v);
+        UT_CHECK(a.index == 10u && a.i_rms_a > 5.0 && same_record(&a, &b));
+    }
+}
+
+/* ---- Overruns ----------------------------------------------------------- */
+
 static void test_overruns(void) {
     UT_CHECK(load("duration 0.008\nat 0 n_rpm=1000\n"));
     exec_config c;
@@ -524,7 +616,7 @@ static void test_overruns(void) {
             "the run stops and the fast tick does nothing more");
     UT_EQ_INT(exec_init(&ex, &c, &scn), EXEC_OK);
     UT_CHECK(!exec_medium_tick(&ex)); /* nothing released yet */
-    UT_EQ_INT(ticks_only(100u), 50);
+    UT_EQ_INT(ticks_only(100u), 52); /* released two steps after the boundary */
     UT_EQ_INT(ex.state, EXEC_STOP_OVERRUN);
     UT_EQ_INT(ex.count.overruns_medium, 1);
     UT_EQ_INT(exec_overruns(&ex), 1);
@@ -589,5 +681,6 @@ void suite_exec_paths(void) {
     test_more_faults();
     test_options();
     test_single_rate();
+    test_split_boundary();
     test_overruns();
 }
