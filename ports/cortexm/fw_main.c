@@ -90,8 +90,8 @@ static void fw_spin_once(int rate) {
 
 /*
  * The fast tick: one fast step. The run is a whole number of motor
- * frames, so its last step is a boundary, where the motor task is
- * released: the executive says there that the run's steps are done, and
+ * frames; the tick that releases the last motor task (one after the last
+ * step) is the last, as the executive then says (exec_fast_ended()), and
  * the ticks stop (off the common path).
  */
 static void fw_fast(void) {

@@ -160,8 +160,8 @@ void Irq_Handler(void);
 void Default_Handler(void);
 
 /*
- * After the run's last fast step: no tick follows, so one that fell due
- * while the last handler ran is not late, and is cleared.
+ * After the run's last tick: none follows, so one that fell due while the
+ * last handler ran is not late, and is cleared.
  */
 void hal_cm_fast_stop(void) {
     SYST_CSR = 0u;

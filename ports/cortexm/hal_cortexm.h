@@ -25,8 +25,8 @@ uint32_t hal_cm_fast_overruns(void);
 void hal_cm_stop_on_overrun(bool stop);
 
 /*
- * Stops the fast tick from inside its handler after the run's last step,
- * clearing a tick that fell due meanwhile (it is not a step of the run, so
+ * Stops the fast tick from inside its handler after the run's last tick,
+ * clearing a tick that fell due meanwhile (it is not a tick of the run, so
  * not an overrun). Unlike hal_ticks_stop() it leaves a medium tick that
  * step released pending, so that it still runs.
  */
