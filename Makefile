@@ -131,6 +131,7 @@ ARM_COMMON := $(COMMON) -O2 -g -ffreestanding -fno-tree-loop-distribute-patterns
 # Thumb-2 kernel (ports/cortexm/fast_kernel_v7m.S), 0 the C (to compare
 # the two). The Cortex-M3 images keep the C: the kernel would not fit
 # beside it in their 64 KiB, and they have no 2 us budget to meet.
+# (Objects are rebuilt when it changes: the variant's cflags file.)
 FW_FAST_KERNEL ?= 1
 FW_FAST_C := src/drive_segment_fixed.c src/drive_segment_float.c src/executive.c
 FW_FAST_FLAGS := -fno-schedule-insns -fno-tree-pre -fno-optimize-sibling-calls
@@ -168,13 +169,24 @@ $(1)-$(2)_SIM_O := $$(patsubst %.c,$$($(1)-$(2)_DIR)/obj/%.o,$(FW_SIM_C))
 $(1)-$(2)_FAIL_O := $$(filter-out %/test_harness.o,$$($(1)-$(2)_TEST_O)) \
     $$($(1)-$(2)_DIR)/obj-mustfail/test_harness.o
 
-$$($(1)-$(2)_DIR)/obj/%.o: %.c | $(BUILD)/gen/suites.inc
+# The variant's compiler flags, rewritten only when they change: every
+# object depends on them, so that a flag given on the command line
+# (FW_FAST_KERNEL=0, FW_SCENARIO_EVENTS=...) rebuilds what it changes.
+$$($(1)-$(2)_DIR)/cflags: FORCE
+	@mkdir -p $$(@D)
+	@printf '%s\n' '$$(subst ','\'',$(ARM_CC) $$($(1)-$(2)_CFLAGS) $(7) $(FW_FAST_FLAGS))' \
+	    > $$@.tmp
+	@cmp -s $$@.tmp $$@ || mv $$@.tmp $$@
+	@rm -f $$@.tmp
+
+$$($(1)-$(2)_DIR)/obj/%.o: %.c $$($(1)-$(2)_DIR)/cflags | $(BUILD)/gen/suites.inc
 	@mkdir -p $$(@D)
 	$(ARM_CC) $$($(1)-$(2)_CFLAGS) $$(or $(7),$$(if $$(filter $$<,$(FW_SIZE_C)),-Os)) \
 	    $$(if $$(filter $$<,$(FW_FAST_C)),$(FW_FAST_FLAGS)) -c $$< -o $$@
 
 # The fast kernel's offsets, from the C declarations (fast_kernel_offsets.c).
-$$($(1)-$(2)_DIR)/gen/fast_kernel_offsets.h: ports/cortexm/fast_kernel_offsets.c $(SRC_H)
+$$($(1)-$(2)_DIR)/gen/fast_kernel_offsets.h: ports/cortexm/fast_kernel_offsets.c $(SRC_H) \
+        $$($(1)-$(2)_DIR)/cflags
 	@mkdir -p $$(@D)
 	$(ARM_CC) $$($(1)-$(2)_CFLAGS) -S -o $$@.s $$<
 	sed -n 's/^@OFFSET \([A-Z0-9_]*\) \(-\{0,1\}[0-9]*\)$$$$/#define \1 \2/p' $$@.s > $$@.tmp
@@ -184,7 +196,7 @@ $$($(1)-$(2)_DIR)/obj/%.o: %.S $$($(1)-$(2)_DIR)/gen/fast_kernel_offsets.h
 	@mkdir -p $$(@D)
 	$(ARM_CC) $$($(1)-$(2)_CFLAGS) -I$$($(1)-$(2)_DIR)/gen -c $$< -o $$@
 
-$$($(1)-$(2)_DIR)/obj-mustfail/test_harness.o: tests/unit/test_harness.c
+$$($(1)-$(2)_DIR)/obj-mustfail/test_harness.o: tests/unit/test_harness.c $$($(1)-$(2)_DIR)/cflags
 	@mkdir -p $$(@D)
 	$(ARM_CC) $$($(1)-$(2)_CFLAGS) $(7) -DUT_PROVE_FAILURE -c $$< -o $$@
 
@@ -199,7 +211,8 @@ $$($(1)-$(2)_DIR)/unit_tests_mustfail.elf: $$($(1)-$(2)_SRC_O) $$($(1)-$(2)_FAIL
 
 # One part of the unit tests: its own runner (the part's suite list comes first
 # on the include path), the harness and the part's suites.
-$$($(1)-$(2)_DIR)/obj-part%/runner.o: tests/harness/runner.c $(BUILD)/gen/part%/suites.inc
+$$($(1)-$(2)_DIR)/obj-part%/runner.o: tests/harness/runner.c $(BUILD)/gen/part%/suites.inc \
+        $$($(1)-$(2)_DIR)/cflags
 	@mkdir -p $$(@D)
 	$(ARM_CC) -I$(BUILD)/gen/part$$* $$($(1)-$(2)_CFLAGS) $(7) -c $$< -o $$@
 
