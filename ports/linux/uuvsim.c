@@ -276,12 +276,14 @@ static int run(const cli_options *o) {
     uint64_t traced = UINT64_MAX; /* the fast step of the last trace row */
     while (e.state == EXEC_RUNNING) {
         exec_desk_step(&e);
-        uint64_t k = exec_fast_steps(&e);
-        if (trace.f != NULL && full && k != traced && k >= trace_first && k <= trace_last) {
-            traced = k; /* a tick without a step (the run's last) adds no row */
-            drive_trace_row row;
-            drive_trace(&e.drive, &row);
-            trace_row(trace.f, exec_time_s(&e), &row);
+        if (trace.f != NULL && full) {
+            uint64_t k = exec_fast_steps(&e);
+            if (k != traced && k >= trace_first && k <= trace_last) {
+                traced = k; /* a tick without a step (the run's last) adds no row */
+                drive_trace_row row;
+                drive_trace(&e.drive, &row);
+                trace_row(trace.f, exec_time_s(&e), &row);
+            }
         }
         if (!e.report_ready) {
             continue;
