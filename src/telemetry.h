@@ -65,7 +65,7 @@ typedef struct {
     uint8_t exit_status;        /* the status the target exits with */
     uint64_t fast, medium, control, slow;  /* steps run */
     uint32_t overruns_fast;     /* the fast tick still pending at the end of its handler */
-    uint32_t overruns_medium;   /* the motor task still busy at its next release */
+    uint32_t overruns_medium;   /* the motor task still busy at the next boundary */
     uint32_t overruns_control;  /* the controller task still busy when its result is due */
     uint32_t overruns_slow;     /* the slow step still pending at the next slow boundary */
     uint32_t saturations;

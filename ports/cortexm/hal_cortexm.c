@@ -198,8 +198,8 @@ void SysTick_Handler(void) {
 
 /*
  * The medium tick's overruns are the executive's to count: the task is
- * late when it is still busy at its next release, which the fast tick
- * sees. A pending PendSV here may be that next release, made on time.
+ * late when it is still busy at the next boundary, which the fast tick
+ * sees. A pending PendSV here may be the next release, made on time.
  */
 void PendSV_Handler(void) {
     if (hal_cm.ticks.medium != NULL) {
