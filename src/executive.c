@@ -196,7 +196,7 @@ static exec_status init_frames(exec *e, const exec_config *cfg, double duration)
     if (cfg->plant == EXEC_PLANT_FULL && medium_frames > 0xFFFFFFFFu) {
         return EXEC_ERR_CONFIG;
     }
-    e->medium_frames = e->medium_left = (uint32_t)medium_frames;
+    e->medium_left = (uint32_t)medium_frames;
     e->stagger_at = drive_staggered(cfg->down, c->fast_per_medium) ? c->fast_per_medium / 2u : 0u;
     e->split = (e->stagger_at == 0u && c->fast_per_medium > EXEC_SPLIT_RELEASE_AT);
     e->fast_event_at = (e->stagger_at != 0u) ? e->stagger_at : c->fast_per_medium;
@@ -313,6 +313,19 @@ static bool medium_release(exec *e) {
 }
 
 /*
+ * The second half and the release together: in the boundary's own tick,
+ * or, split, in the tick of its own that follows the run's last step
+ * (after which the fast ticks are over).
+ */
+static bool boundary_end(exec *e) {
+    boundary_begin(e);
+    if (e->medium_left == 0u) {
+        e->fast_gate = EXEC_GATE_STOP;
+    }
+    return medium_release(e);
+}
+
+/*
  * A fast tick's event, after its step, out of the tick's common path:
  * - At a motor-frame boundary (fast_phase n): the boundary's first half,
  *   drive_medium_publish(). Its second half (boundary_begin()) and the
@@ -322,7 +335,7 @@ static bool medium_release(exec *e) {
  *   frame's slack (docs/firmware.md); the results are the same, as no
  *   step runs between the halves and the motor task reads only what they
  *   wrote. After the run's last boundary one more tick runs the second
- *   half and the release, without a step (fast_last()).
+ *   half and the release, without a step (boundary_end()).
  * - Split, EXEC_SPLIT_RELEASE_AT steps into the frame: the release.
  * - Staggered, half a frame after the release: the latch.
  */
@@ -353,18 +366,7 @@ static bool fast_event(exec *e) {
         e->fast_event_at = EXEC_SPLIT_RELEASE_AT;
         return false;
     }
-    boundary_begin(e);
-    if (e->medium_left == 0u) {
-        e->fast_gate = EXEC_GATE_STOP; /* the run's last fast step */
-    }
-    return medium_release(e);
-}
-
-/* The second half of the run's last boundary, split: a tick of its own, with no step. */
-static bool fast_last(exec *e) {
-    e->fast_gate = EXEC_GATE_STOP;
-    boundary_begin(e);
-    return medium_release(e);
+    return boundary_end(e);
 }
 
 bool exec_fast_tick(exec *e) {
@@ -372,7 +374,7 @@ bool exec_fast_tick(exec *e) {
     if (gate != 0u) {
         /* Work before the step: the boundary's second half, or no step at all. */
         if (gate != EXEC_GATE_BEGIN) {
-            return gate == EXEC_GATE_LAST && fast_last(e);
+            return gate == EXEC_GATE_LAST && boundary_end(e);
         }
         e->fast_gate = 0u;
         boundary_begin(e);
@@ -613,7 +615,8 @@ uint32_t exec_overruns(const exec *e) {
 }
 
 uint64_t exec_fast_steps(const exec *e) {
-    uint32_t frames = e->medium_frames - e->medium_left;
+    /* The motor frames ended: those of the run (as init_frames stored them) less those left. */
+    uint32_t frames = (uint32_t)(e->frames * e->cfg.medium_per_slow) - e->medium_left;
     return (uint64_t)frames * e->cfg.fast_per_medium + e->fast_phase;
 }
 

@@ -182,7 +182,6 @@ typedef struct {
     exec_frame report;
     bool report_ready;
     exec_counters count;
-    uint32_t medium_frames;     /* motor frames in the run (full plant) */
 } exec;
 
 extern const char *const exec_command_names[EXEC_NCMD];

@@ -78,7 +78,7 @@ errors=$(sed -n 's/.*"errors": \([0-9]*\).*/\1/p' "$sum")
 fast_n=$(fw_json "$sum" fast_tick count)
 steps_fast=$(sed -n 's/.*"steps": {"fast": \([0-9]*\).*/\1/p' "$sum")
 # One tick per fast step, and one more: the second half of the run's last
-# boundary has a tick of its own, without a step (executive.c, fast_last).
+# boundary has a tick of its own, without a step (executive.c, boundary_end).
 [ "$errors" = 0 ] && [ "$fast_n" = $((steps_fast + 1)) ]
 check $? "$variant: instruction counts cover every fast tick ($fast_n ticks for $steps_fast" \
     "steps and the last boundary's), no unmatched region exit ($errors)"
