@@ -594,6 +594,22 @@ void exec_desk_step(exec *e) {
     }
 }
 
+uint32_t exec_desk_run(exec *e, uint32_t max_ticks) {
+    uint32_t n = 0u;
+    if (e->cfg.plant == EXEC_PLANT_FULL && e->fast_gate == 0u) {
+        /* The ticks before the next event only step (exec_fast_tick()). */
+        n = e->fast_event_at - e->fast_phase - 1u;
+        n = (n < max_ticks) ? n : max_ticks;
+        drive_fast_run(&e->drive, n);
+        e->fast_phase += n;
+    }
+    if (n < max_ticks) {
+        exec_desk_step(e);
+        n++;
+    }
+    return n;
+}
+
 bool exec_report_take(exec *e, exec_frame *out) {
     if (!e->report_ready) {
         return false;

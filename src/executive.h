@@ -231,6 +231,16 @@ void exec_slow_step(exec *e);
  */
 void exec_desk_step(exec *e);
 
+/*
+ * The desk loop's fast way: up to max_ticks exec_desk_step()s, with the
+ * same results, returning how many ran (none when max_ticks is 0). The
+ * fast ticks before the next one with an event (a motor-frame boundary, a
+ * release or a latch) only step, and step as one drive_fast_run(); the
+ * event's tick follows as exec_desk_step(), and the call returns after it,
+ * so that a report or the run's end is seen when it happens.
+ */
+uint32_t exec_desk_run(exec *e, uint32_t max_ticks);
+
 /* Takes the telemetry record made by the last slow step, if any. */
 bool exec_report_take(exec *e, exec_frame *out);
 

@@ -57,7 +57,7 @@ static int run(const exec_config *cfg, run_data *out) {
     (void)exec_report_take(&ex, &out->rec[out->n++]);
     double t0 = now_s();
     while (ex.state == EXEC_RUNNING) {
-        exec_desk_step(&ex);
+        (void)exec_desk_run(&ex, UINT32_MAX);
         if (ex.report_ready && out->n < MAX_RECORDS) {
             (void)exec_report_take(&ex, &out->rec[out->n++]);
         }
@@ -111,8 +111,12 @@ static errors compare(const run_data *a, const run_data *ref) {
     return e;
 }
 
-/* Per-step cost of each segment, timed in isolation on a running plant [ns]. */
-static void segment_costs(const exec_config *base, double ns[4]) {
+/*
+ * Per-step cost of each segment, timed in isolation on a running plant
+ * [ns]: the fast step as a tick (drive_fast_tick) and in the desk's runs
+ * (ns[4]), the motor, the controller, the slow segment.
+ */
+static void segment_costs(const exec_config *base, double ns[5]) {
     exec_config cfg = *base;
     cfg.duration_s = 10.0;
     exec_init(&ex, &cfg, &scn);
@@ -120,14 +124,33 @@ static void segment_costs(const exec_config *base, double ns[4]) {
     for (int i = 0; i < 250000 && ex.state == EXEC_RUNNING; i++) {
         exec_desk_step(&ex);
     }
+    /*
+     * The fast step, as ticks and in the desk's runs (a frame's steps less
+     * one): frames of it on the running drive, each from the modulator's
+     * state at the frame's start, so that the references stay those the
+     * motor task set (without it they would ramp on past their range).
+     */
     static drive_segment d;
+    const pwm_rt rt0 = ex.drive.rt;
+    const uint32_t run_n = (cfg.fast_per_medium > 1u) ? cfg.fast_per_medium - 1u : 1u;
+    const int n_frames = 2000000 / (int)run_n;
+    const double n_fast = (double)n_frames * run_n;
     d = ex.drive;
-    const int n_fast = 2000000;
     double t0 = now_s();
-    for (int i = 0; i < n_fast; i++) {
-        drive_fast_tick(&d);
+    for (int i = 0; i < n_frames; i++) {
+        d.rt = rt0;
+        for (uint32_t k = 0u; k < run_n; k++) {
+            drive_fast_tick(&d);
+        }
     }
     ns[0] = 1e9 * (now_s() - t0) / n_fast;
+    d = ex.drive;
+    t0 = now_s();
+    for (int i = 0; i < n_frames; i++) {
+        d.rt = rt0;
+        drive_fast_run(&d, run_n);
+    }
+    ns[4] = 1e9 * (now_s() - t0) / n_fast;
     d = ex.drive;
     const int n_med = 100000;
     t0 = now_s();
@@ -213,15 +236,15 @@ int main(int argc, char **argv) {
     }
     double sim_s = mr.rec[mr.n - 1].t_s;
     errors e = compare(&mr, &ref);
-    double ns[4];
+    double ns[5];
     segment_costs(&cfg, ns);
 
     fprintf(stderr, "%s build, %.1f s of %s\n", UUV_NUMERIC_NAME, sim_s, argv[1]);
     fprintf(stderr, "  real-time factor: switching %.0f, averaged %.0f\n", sim_s / mr.wall_s,
             sim_s / avg_wall);
-    fprintf(stderr, "  cost per step: fast %.1f ns, motor %.1f ns, controller %.1f ns, "
-                    "slow %.0f ns\n",
-            ns[0], ns[1], ns[2], ns[3]);
+    fprintf(stderr, "  cost per step: fast %.1f ns (%.1f ns in runs), motor %.1f ns, "
+                    "controller %.1f ns, slow %.0f ns\n",
+            ns[0], ns[4], ns[1], ns[2], ns[3]);
     fprintf(stderr, "  single-rate %.2f s, multi-rate %.4f s: speed-up %.0fx\n", ref.wall_s,
             mr.wall_s, ref.wall_s / mr.wall_s);
     fprintf(stderr, "  errors vs single-rate (RMS, %% of reference RMS):\n");
@@ -232,11 +255,11 @@ int main(int argc, char **argv) {
            "\"wall_single_rate_s\": %.6g, \"wall_multi_rate_s\": %.6g, "
            "\"err_shaft_speed_pct\": %.6g, \"err_current_pct\": %.6g, "
            "\"err_surge_speed_pct\": %.6g, \"err_position_pct\": %.6g, "
-           "\"ns_per_step\": {\"fast\": %.4g, \"medium\": %.4g, \"control\": %.4g, "
-           "\"slow\": %.4g}, \"couplings\": [",
+           "\"ns_per_step\": {\"fast\": %.4g, \"fast_in_runs\": %.4g, \"medium\": %.4g, "
+           "\"control\": %.4g, \"slow\": %.4g}, \"couplings\": [",
            UUV_NUMERIC_NAME, sim_s, sim_s / mr.wall_s, sim_s / avg_wall,
            ref.wall_s / mr.wall_s, ref.wall_s, mr.wall_s, e.shaft, e.current, e.surge,
-           e.position, ns[0], ns[1], ns[2], ns[3]);
+           e.position, ns[0], ns[4], ns[1], ns[2], ns[3]);
     bool first = true;
     for (int dn = 0; dn < 4; dn++) {
         for (int up = 0; up < 3; up++) {

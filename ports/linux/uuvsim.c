@@ -274,9 +274,21 @@ static int run(const cli_options *o) {
     double w0 = wall_seconds();
     double next_progress = w0 + 0.5;
     uint64_t traced = UINT64_MAX; /* the fast step of the last trace row */
+    bool tracing = (trace.f != NULL && full);
     while (e.state == EXEC_RUNNING) {
-        exec_desk_step(&e);
-        if (trace.f != NULL && full) {
+        /* Steps in runs, but one at a time inside the trace window. */
+        uint32_t max_ticks = UINT32_MAX;
+        if (tracing) {
+            uint64_t k = exec_fast_steps(&e);
+            if (k < trace_first) {
+                uint64_t ahead = trace_first - k;
+                max_ticks = (ahead < UINT32_MAX) ? (uint32_t)ahead : UINT32_MAX;
+            } else if (k < trace_last) {
+                max_ticks = 1u;
+            }
+        }
+        (void)exec_desk_run(&e, max_ticks);
+        if (tracing) {
             uint64_t k = exec_fast_steps(&e);
             if (k != traced && k >= trace_first && k <= trace_last) {
                 traced = k; /* a tick without a step (the run's last) adds no row */

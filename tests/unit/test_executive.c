@@ -68,6 +68,95 @@ static void run_step(const exec_config *cfg, step_result *r) {
     r->saturations = ex.count.saturations;
 }
 
+/* The records of a run, by the desk's runs of ticks (max_ticks) or one tick at a time (0). */
+#define DESK_RECORDS 8
+
+typedef struct {
+    exec_frame rec[DESK_RECORDS];
+    uint32_t n;
+    uint64_t fast;
+    exec_counters count;
+} desk_result;
+
+static void run_desk(const exec_config *cfg, uint32_t max_ticks, desk_result *r) {
+    UT_CHECK(exec_init(&ex, cfg, &scn) == EXEC_OK);
+    r->n = 0u;
+    /* A tick more than the run has ends it too (a broken run would never end). */
+    uint64_t left = (uint64_t)(cfg->duration_s * 1e9) / cfg->fast_ns + 2u;
+    while (ex.state == EXEC_RUNNING && left > 0u) {
+        uint32_t k = 1u;
+        if (max_ticks == 0u) {
+            exec_desk_step(&ex);
+        } else {
+            uint32_t most = (left < max_ticks) ? (uint32_t)left : max_ticks;
+            k = exec_desk_run(&ex, most);
+            UT_CHECK(k >= 1u && k <= most);
+        }
+        left = (k < left) ? left - k : 0u;
+        if (ex.report_ready && r->n < DESK_RECORDS) {
+            (void)exec_report_take(&ex, &r->rec[r->n++]);
+        }
+    }
+    r->fast = exec_fast_steps(&ex);
+    r->count = ex.count;
+}
+
+static bool same_records(const desk_result *a, const desk_result *b) {
+    bool same = (a->n == b->n) && (a->fast == b->fast) &&
+                (a->count.medium == b->count.medium) && (a->count.slow == b->count.slow) &&
+                (a->count.saturations == b->count.saturations);
+    for (uint32_t k = 0u; same && k < a->n; k++) {
+        const exec_frame *x = &a->rec[k];
+        const exec_frame *y = &b->rec[k];
+        same = x->t_s == y->t_s && x->te_nm == y->te_nm && x->i_rms_a == y->i_rms_a &&
+               x->v_dc_v == y->v_dc_v && x->i_batt_a == y->i_batt_a && x->soc == y->soc &&
+               x->m_index == y->m_index && x->f_hz == y->f_hz && x->trip == y->trip;
+        for (int i = 0; same && i < VESSEL_NSTATES; i++) {
+            same = (x->x[i] == y->x[i]);
+        }
+    }
+    return same;
+}
+
+/*
+ * exec_desk_run() against exec_desk_step(), the same bits: the real-time
+ * path (runs of steps), staggered, the filter coupling and the event
+ * inverter (the general step), the averaged layer, single-rate, with runs
+ * of 1, 7 and as many ticks as it likes.
+ */
+static void test_desk_runs(const exec_config *base) {
+    static const struct {
+        drive_inverter inverter;
+        coupling_down down;
+        coupling_up up;
+        bool single_rate;
+    } cases[] = {
+        {DRIVE_INVERTER_SWITCHING, COUPLE_ZOH, COUPLE_AVG, false},
+        {DRIVE_INVERTER_SWITCHING, COUPLE_STAGGER, COUPLE_SAMPLE, false},
+        {DRIVE_INVERTER_SWITCHING, COUPLE_FOH, COUPLE_FILTER, false},
+        {DRIVE_INVERTER_EVENT, COUPLE_ZOH, COUPLE_AVG, false},
+        {DRIVE_INVERTER_AVERAGED, COUPLE_ZOH, COUPLE_AVG, false},
+        {DRIVE_INVERTER_SWITCHING, COUPLE_ZOH, COUPLE_AVG, true},
+    };
+    static const uint32_t runs[] = {UINT32_MAX, 7u, 1u};
+    static desk_result one, many;
+    for (size_t c = 0; c < sizeof cases / sizeof cases[0]; c++) {
+        exec_config cfg = *base;
+        cfg.duration_s = cases[c].single_rate ? 0.2 : 0.3;
+        cfg.inverter = cases[c].inverter;
+        cfg.down = cases[c].down;
+        cfg.up = cases[c].up;
+        cfg.single_rate = cases[c].single_rate;
+        run_desk(&cfg, 0u, &one);
+        UT_CHECK(ex.state == EXEC_DONE && one.n >= 3u);
+        for (size_t k = 0; k < sizeof runs / sizeof runs[0]; k++) {
+            run_desk(&cfg, runs[k], &many);
+            UT_CHECK(ex.state == EXEC_DONE);
+            UT_CHECK(same_records(&one, &many));
+        }
+    }
+}
+
 void suite_executive(void) {
     const char *text = "duration 2\nat 0 n_rpm=1000\n";
     scenario_error err;
@@ -125,6 +214,10 @@ void suite_executive(void) {
     UT_EQ_INT(ex.count.control, 2500);
     UT_EQ_INT(ex.count.slow, 20);
     UT_EQ_INT(exec_overruns(&ex), 0);
+
+    UT_TEST("the desk's runs of ticks (exec_desk_run) give the bits of one tick at a time: "
+            "switching, staggered, filter coupling, event, averaged, single-rate");
+    test_desk_runs(&cfg);
 
     UT_TEST("determinism: the same run twice gives the same bits");
     static step_result b;
