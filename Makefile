@@ -99,8 +99,8 @@ endef
 # -O3: the desk's runs of fast steps (src/drive_fast_run.c) keep the step's
 # state in registers; the results are the same bits at any level. GCC's
 # partial redundancy elimination raises that loop's register pressure
-# beyond x86-64's 16 registers; without it the desk runs 15 to 25 % faster
-# (docs/multirate.md, "Speed").
+# beyond x86-64's 16 registers; without it the desk runs 8 % (float) to
+# 24 % (fixed) faster (docs/multirate.md, "Speed").
 HOST_OPT := -O3 -g
 DESK_RUN_GCC_FLAGS := -fno-tree-pre
 SAN_FLAGS := -O1 -g -fsanitize=address,undefined -fno-sanitize-recover=all -fno-omit-frame-pointer

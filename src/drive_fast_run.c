@@ -9,10 +9,10 @@
  * The step is drive_fast_tick()'s real-time step (fast_tick_plain() in
  * drive_segment_fixed.c and drive_segment_float.c), composed of the same
  * pieces (models/power_stage_fast.h, models/pwm_rt.h) in the same order,
- * here on the locals. It is a copy, not a
- * shared function, so that the interrupt's step keeps the code the
- * compiler gives it on its own (measured per target in docs/firmware.md);
- * tests/unit/test_executive.c checks that both give the same bits.
+ * here on the locals. It is a copy, not a shared function, so that the
+ * interrupt's step keeps the code the compiler gives it on its own
+ * (measured per target in docs/firmware.md); tests/unit/test_executive.c
+ * checks that both give the same bits.
  *
  * The names without a twin suffix are the build's (UUV_NUMERIC).
  */
@@ -48,6 +48,7 @@ typedef ps_fast_f32 plain_fast;
 #define plain_phase ps_fast_phase_f32
 #define plain_end ps_fast_end_f32
 
+/* The motor's fast companion, i + (v - e) k_l. */
 static inline float plain_companion(float i, float v, float e, float k_l) {
     return i + (v - e) * k_l;
 }
@@ -67,7 +68,7 @@ void drive_fast_run(drive_segment *d, uint32_t n) {
     plain_stage ps = d->ps;
     plain_val i_fast[2] = {d->i_fast[0], d->i_fast[1]};
     const plain_val e[2] = {d->e[0], d->e[1]};
-    const plain_val k_l = plain_gain(d);
+    const plain_val gain = plain_gain(d);
     plain_sum v_cap[2] = {d->sums.v_cap[0], d->sums.v_cap[1]};
     plain_sum v_dc = d->sums.v_dc;
     const plain_bat bat = d->in.battery;
@@ -80,7 +81,7 @@ void drive_fast_run(drive_segment *d, uint32_t n) {
         for (int x = 0; x < 2; x++) {
             plain_phase(&ps, &f, x, i_fast[x]);
             const plain_val v = ps.ph[x].v_c;
-            i_fast[x] = plain_companion(i_fast[x], v, e[x], k_l);
+            i_fast[x] = plain_companion(i_fast[x], v, e[x], gain);
             v_cap[x] += v;
         }
         plain_end(&ps, &bat, &f);
