@@ -70,11 +70,19 @@ $(1)_FAIL_O := $$(filter-out %/test_harness.o,$$($(1)_TEST_O)) $$($(1)_DIR)/obj-
 $$($(1)_DIR)/obj/src/%.o: XFLAGS := -ffreestanding
 $$($(1)_DIR)/obj/src/drive_fast_run.o: XFLAGS := -ffreestanding $$(if $$(findstring gcc,$(2)),$(DESK_RUN_GCC_FLAGS))
 
-$$($(1)_DIR)/obj/%.o: %.c | $(BUILD)/gen/suites.inc
+# The variant's compiler flags, rewritten only when they change: every
+# object depends on them, so that a changed HOST_OPT rebuilds the variant.
+$$($(1)_DIR)/cflags: FORCE
+	@mkdir -p $$(@D)
+	@printf '%s\n' '$$(subst ','\'',$(2) $$($(1)_CFLAGS) $(DESK_RUN_GCC_FLAGS))' > $$@.tmp
+	@cmp -s $$@.tmp $$@ || mv $$@.tmp $$@
+	@rm -f $$@.tmp
+
+$$($(1)_DIR)/obj/%.o: %.c $$($(1)_DIR)/cflags | $(BUILD)/gen/suites.inc
 	@mkdir -p $$(@D)
 	$(2) $$($(1)_CFLAGS) $$(XFLAGS) -c $$< -o $$@
 
-$$($(1)_DIR)/obj-mustfail/test_harness.o: tests/unit/test_harness.c
+$$($(1)_DIR)/obj-mustfail/test_harness.o: tests/unit/test_harness.c $$($(1)_DIR)/cflags
 	@mkdir -p $$(@D)
 	$(2) $$($(1)_CFLAGS) -DUT_PROVE_FAILURE -c $$< -o $$@
 
