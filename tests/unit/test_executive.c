@@ -1,8 +1,9 @@
 /*
  * The executive with the whole plant: the closed loop from rest to
  * 1000 rpm against the propeller load (overshoot, settling, steady error),
- * determinism of a repeated run, and the schedule's step counts. Runs in
- * the build's numeric type, on the host and on every target.
+ * determinism of a repeated run, the schedule's step counts, and the
+ * desk's runs of steps against one tick at a time. Runs in the build's
+ * numeric type, on the host and on every target.
  */
 #include "executive.h"
 #include "math/umath.h"
