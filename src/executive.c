@@ -4,6 +4,7 @@
 #include "executive.h"
 
 #include "math/umath.h"
+#include "util/fmt.h"
 
 #define RPM_TO_RADPS (3.14159265358979323846 / 30.0)
 
@@ -236,6 +237,44 @@ static exec_status init_drive(exec *e) {
     e->speed_report_rpm = e->speed_rpm;
     drive_speed_command(&e->drive, e->speed_rpm * RPM_TO_RADPS);
     return EXEC_OK;
+}
+
+/* Why the configuration cannot model a command, or NULL when it can. */
+static const char *unmodelled(const exec_config *cfg, uint16_t command) {
+    if (command < (uint16_t)SCN_FIRST_FAULT || command == (uint16_t)SCN_FAULT_FIN_JAM) {
+        return NULL;
+    }
+    if (cfg->plant != EXEC_PLANT_FULL) {
+        return "a drive fault, and the vessel plant has no drive (use --plant full)";
+    }
+    if (cfg->inverter == DRIVE_INVERTER_AVERAGED &&
+        (command == (uint16_t)SCN_FAULT_SWITCH_OPEN || command == (uint16_t)SCN_FAULT_LEG_SHORT ||
+         command == (uint16_t)SCN_FAULT_PHASE_OPEN ||
+         command == (uint16_t)SCN_FAULT_BATTERY_CUTOFF)) {
+        return "the averaged inverter has no switches to fault or to block "
+               "(use --inverter switching or event)";
+    }
+    return NULL;
+}
+
+bool exec_check_scenario(const exec_config *cfg, const scenario *scn, scenario_error *err) {
+    for (size_t k = 0; k < scn->n_events; k++) {
+        const scenario_event *ev = &scn->events[k];
+        const char *why = unmodelled(cfg, ev->command);
+        if (why != NULL) {
+            const char *name = scenario_command_names[ev->command];
+            size_t n = 0;
+            while (name[n] != '\0' && n < sizeof err->field - 1u) {
+                err->field[n] = name[n];
+                n++;
+            }
+            err->field[n] = '\0';
+            err->line = ev->line;
+            (void)fmt_format(err->message, sizeof err->message, "%s", why);
+            return false;
+        }
+    }
+    return true;
 }
 
 static void make_report(exec *e);

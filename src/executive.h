@@ -193,6 +193,19 @@ void exec_config_default(exec_config *cfg);
 exec_status exec_init(exec *e, const exec_config *cfg, const scenario *scn);
 
 /*
+ * Whether the configuration models every command of the scenario. The
+ * drive's faults need the full plant (the vessel plant has no drive), and
+ * the faults that end in blocked gates (switch_open, leg_short, phase_open,
+ * battery_cutoff) need an inverter with switches: the averaged layer has
+ * none to fault or to block, so it would keep modulating through them.
+ * Returns true, or false with *err naming the first such command (its
+ * line and name, and what to choose instead). exec_init() does not call
+ * it: a port that offers these options does, before it (the firmware runs
+ * the default configuration, which models every command).
+ */
+bool exec_check_scenario(const exec_config *cfg, const scenario *scn, scenario_error *err);
+
+/*
  * The fast tick; true when it released the medium task. Once the run's
  * last fast step and the release after it have run (exec_fast_ended(),
  * true right after that release) it does nothing: a port stops its timer

@@ -236,6 +236,12 @@ static int run(const cli_options *o) {
                 o->scenario_path);
         return 2;
     }
+    scenario_error err;
+    if (!exec_check_scenario(&o->exec, &scn, &err)) {
+        fprintf(stderr, "uuvsim: %s:%u: field '%s': %s\n", o->scenario_path, err.line, err.field,
+                err.message);
+        return 2;
+    }
     static exec e;
     exec_status st = exec_init(&e, &o->exec, &scn);
     if (st != EXEC_OK) {

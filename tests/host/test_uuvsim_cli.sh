@@ -90,6 +90,13 @@ expect_error "error: unwritable CSV" "cannot write" \
 printf 'case,delta_r_cmd_rad\n1,2\n' >"$tmp/badd.csv"
 expect_error "error: derivs file with a wrong header" "badd.csv:1: column 3" \
     "$uuvsim" derivs "$tmp/badd.csv"
+printf 'duration 1\nat 0 n_rpm=800\nat 0.5 leg_short=a\n' >"$tmp/fault.scn"
+expect_error "error: a fault the averaged inverter cannot model" \
+    "fault.scn:3: field 'leg_short': the averaged inverter has no switches" \
+    "$uuvsim" --inverter averaged --scenario "$tmp/fault.scn" --csv "$tmp/bad.csv"
+expect_error "error: a drive fault with the vessel plant" \
+    "fault.scn:3: field 'leg_short': .*vessel plant has no drive" \
+    "$uuvsim" --plant vessel --scenario "$tmp/fault.scn" --csv "$tmp/bad.csv"
 expect_error "error: bad --plant value" "expected one of vessel|full" \
     "$uuvsim" --plant boat --scenario scenarios/turning_circle.scn
 

@@ -186,6 +186,64 @@ static void test_desk_runs(const exec_config *base) {
     }
 }
 
+static bool same_text(const char *a, const char *b) {
+    size_t i = 0;
+    while (a[i] != '\0' && a[i] == b[i]) {
+        i++;
+    }
+    return a[i] == b[i];
+}
+
+/* Parses text into *s and checks it against cfg; *err says why not. */
+static bool check_text(const exec_config *cfg, const char *text, scenario_error *err) {
+    static scenario s;
+    *err = (scenario_error){0};
+    return scenario_parse(&s, text, text_len(text), err) && exec_check_scenario(cfg, &s, err);
+}
+
+/*
+ * exec_check_scenario(): every command in the default configuration and
+ * with the event inverter; the drive's faults refused by the vessel plant,
+ * the four that end in blocked gates by the averaged layer, each with its
+ * line and name.
+ */
+static void test_scenario_check(void) {
+    static const char *const all = "duration 1\n"
+                                   "at 0 n_rpm=800 rudder=5deg fin_jam=rudder\n"
+                                   "at 0.1 dc_cap=0.5 current_offset=1 prop_fouling=2\n"
+                                   "at 0.2 switch_open=a+ leg_short=b\n"
+                                   "at 0.3 phase_open=c battery_cutoff=on\n";
+    scenario_error err;
+    exec_config cfg;
+    exec_config_default(&cfg);
+    UT_CHECK(check_text(&cfg, all, &err));
+    cfg.inverter = DRIVE_INVERTER_EVENT;
+    UT_CHECK(check_text(&cfg, all, &err));
+
+    cfg.inverter = DRIVE_INVERTER_AVERAGED;
+    UT_CHECK(check_text(&cfg, "at 0 n_rpm=800 fin_jam=stern\n"
+                              "at 0.1 dc_cap=0.5 current_offset=1 prop_fouling=2\n", &err));
+    static const char *const refused[][2] = {
+        {"at 0 n_rpm=800\nat 0.2 switch_open=a+\n", "switch_open"},
+        {"at 0 n_rpm=800\nat 0.2 leg_short=b\n", "leg_short"},
+        {"at 0 n_rpm=800\nat 0.2 phase_open=c\n", "phase_open"},
+        {"at 0 n_rpm=800\nat 0.2 battery_cutoff=on\n", "battery_cutoff"},
+    };
+    for (size_t k = 0; k < sizeof refused / sizeof refused[0]; k++) {
+        UT_CHECK(!check_text(&cfg, refused[k][0], &err));
+        UT_EQ_INT(err.line, 2u);
+        UT_CHECK(same_text(err.field, refused[k][1]) && err.message[0] != '\0');
+    }
+
+    /* The vessel plant: the first drive fault is line 3's dc_cap; fin_jam passes. */
+    exec_config_default(&cfg);
+    cfg.plant = EXEC_PLANT_VESSEL;
+    UT_CHECK(!check_text(&cfg, all, &err));
+    UT_EQ_INT(err.line, 3u);
+    UT_CHECK(same_text(err.field, "dc_cap"));
+    UT_CHECK(check_text(&cfg, "at 0 n_rpm=800 fin_jam=rudder\n", &err));
+}
+
 void suite_executive(void) {
     const char *text = "duration 2\nat 0 n_rpm=1000\n";
     scenario_error err;
@@ -247,6 +305,10 @@ void suite_executive(void) {
     UT_TEST("the desk's runs of ticks (exec_desk_run) give the bits of one tick at a time: "
             "switching, staggered, filter coupling, event, averaged, single-rate");
     test_desk_runs(&cfg);
+
+    UT_TEST("the scenario check: the vessel plant refuses the drive's faults, the averaged "
+            "layer the four that end in blocked gates, each with its line and name");
+    test_scenario_check();
 
     UT_TEST("determinism: the same run twice gives the same bits");
     static step_result b;
