@@ -264,7 +264,7 @@ bool exec_check_scenario(const exec_config *cfg, const scenario *scn, scenario_e
         if (why != NULL) {
             const char *name = scenario_command_names[ev->command];
             size_t n = 0;
-            while (name[n] != '\0' && n < sizeof err->field - 1u) {
+            while (n < sizeof err->field - 1u && name[n] != '\0') {
                 err->field[n] = name[n];
                 n++;
             }

@@ -26,6 +26,7 @@ bool parse_number(const char *s, size_t n, double *value, size_t *used) {
     uint64_t mantissa = 0;
     int exp10 = 0;
     unsigned digits = 0;     /* significant digits kept in mantissa */
+    bool dropped = false;    /* a nonzero digit beyond those 19 */
     bool any_digit = false;
     for (; i < n && is_digit(s[i]); i++) {
         any_digit = true;
@@ -36,6 +37,7 @@ bool parse_number(const char *s, size_t n, double *value, size_t *used) {
             mantissa = mantissa * 10u + (uint64_t)(s[i] - '0');
         } else {
             exp10++; /* digits beyond 19 only scale */
+            dropped = dropped || s[i] != '0';
         }
     }
     if (i < n && s[i] == '.') {
@@ -48,6 +50,8 @@ bool parse_number(const char *s, size_t n, double *value, size_t *used) {
                 }
                 mantissa = mantissa * 10u + (uint64_t)(s[i] - '0');
                 exp10--;
+            } else {
+                dropped = dropped || s[i] != '0';
             }
         }
     }
@@ -75,11 +79,19 @@ bool parse_number(const char *s, size_t n, double *value, size_t *used) {
     }
     double v = (double)mantissa;
     if (mantissa != 0u) {
-        /* Bring the magnitude in range in exact steps where possible. */
-        int e = exp10;
-        if (e > 300 + 19 || e < -300 - 19 - 19) {
+        /* The range on the digits, so that 1e300 and 1e-300 themselves pass:
+         * the value is in [10^lead, 10^(lead + 1)), and at lead 300 it is
+         * 1e300 only when its digits are a 1 and zeros. */
+        const int lead = exp10 + (int)digits - 1;
+        uint64_t one = 1u;
+        for (unsigned k = 1u; k < digits; k++) {
+            one *= 10u;
+        }
+        if (lead > 300 || (lead == 300 && (mantissa != one || dropped)) || lead < -300) {
             return false;
         }
+        /* Bring the magnitude in range in exact steps where possible. */
+        int e = exp10;
         while (e > 22) {
             v *= 1e22;
             e -= 22;
@@ -89,9 +101,6 @@ bool parse_number(const char *s, size_t n, double *value, size_t *used) {
             e += 22;
         }
         v = (e >= 0) ? v * exact_pow10((unsigned)e) : v / exact_pow10((unsigned)-e);
-        if (!(v <= 1e300) || (v != 0.0 && v < 1e-300)) {
-            return false;
-        }
     }
     *value = negative ? -v : v;
     *used = i;

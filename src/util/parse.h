@@ -12,8 +12,9 @@
  * Reads a decimal number ("-12", "3.25", "1e-6", ".5") from the first n
  * characters of s. On success stores the value and the count of characters
  * used and returns true; the caller decides what may follow (a unit
- * suffix, or nothing). Infinities, NaN, hexadecimal and numbers beyond
- * +-1e300 are refused. The result is correctly rounded when the digits form
+ * suffix, or nothing). Infinities, NaN, hexadecimal and magnitudes beyond
+ * 1e300 or below 1e-300 (as written, so 1e300 and 1e-300 pass) are
+ * refused. The result is correctly rounded when the digits form
  * an integer below 2^53 and the decimal exponent is within +-22 (every
  * value a person writes in a scenario); otherwise within a few ulp.
  */

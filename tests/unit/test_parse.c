@@ -58,10 +58,24 @@ static void test_numbers(void) {
     UT_NEAR(v, 2.5e-100, 1e-15 * 2.5e-100);
 
     UT_TEST("numbers: refused are no digits at all, an exponent without digits, magnitudes "
-            "beyond 1e300 (also by a huge exponent) and below 1e-300 (1e-310)");
+            "beyond 1e300 (also by a huge exponent or a 20th digit) and below 1e-300 "
+            "(1e-310); the bounds themselves pass");
     UT_CHECK(refused("") && refused("-") && refused("1ex") && refused("2e+"));
     UT_CHECK(refused("2e300") && refused("1e400") && refused("-1e400"));
     UT_CHECK(refused("1e-400") && refused("1e123456") && refused("1e-310"));
+    UT_CHECK(refused("1.0000000000000000001e300") && refused("1.00000000000000000001e300"));
+    UT_CHECK(refused("10000000000000000000001e278") && refused("9.99e-301"));
+    UT_CHECK(number("1e300", &v, 5u));
+    UT_NEAR(v, 1e300, 1e-15 * 1e300);
+    UT_CHECK(number("-1.000e300", &v, 10u));
+    UT_NEAR(v, -1e300, 1e-15 * 1e300);
+    UT_CHECK(number("100000000000000000000000e277", &v, 28u));
+    UT_NEAR(v, 1e300, 1e-15 * 1e300);
+    UT_CHECK(number("1e-300", &v, 6u));
+    UT_NEAR(v, 1e-300, 1e-15 * 1e-300);
+    UT_CHECK(number("0.001e-297", &v, 10u));
+    UT_NEAR(v, 1e-300, 1e-15 * 1e-300);
+    UT_CHECK(number("9.99e299", &v, 8u));
     UT_CHECK(number("0e123456", &v, 8u) && v == 0.0);
 }
 
