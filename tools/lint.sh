@@ -18,13 +18,21 @@ jobs=$(nproc 2>/dev/null || echo 2)
 TIDY_CHECKS='-*,clang-analyzer-*,bugprone-*,-bugprone-easily-swappable-parameters,cert-*,misc-redundant-expression,misc-misplaced-const,readability-misleading-indentation'
 TIDY_FLAGS='-std=c99 -Isrc -ffreestanding'
 
-# 1. The deviations, as "rule glob" lines.
+# 1. The deviations, as "rule glob row" lines (row: the table row's line in
+# docs/misra.md), and the counts the document states: each row's "(N
+# findings)" and the totals table's "| Rr | N |" rows, as "row N" and "Rr N".
 awk -F'|' '/^\| *[0-9]+\.[0-9]+ *\|/ && $4 ~ /^ *[ADP] *$/ {
     rule = $2; gsub(/ /, "", rule)
     place = $3; gsub(/`/, "", place); gsub(/,/, " ", place)
     n = split(place, g, / +/)
-    for (i = 1; i <= n; i++) if (g[i] != "") print rule, g[i]
+    for (i = 1; i <= n; i++) if (g[i] != "") print rule, g[i], NR
 }' docs/misra.md > "$out/deviations.txt"
+awk -F'|' '/^\| *[0-9]+\.[0-9]+ *\|/ && $4 ~ /^ *[ADP] *$/ {
+    if (match($5, /\([0-9]+ findings?\)/)) print NR, substr($5, RSTART + 1, RLENGTH - 2) + 0
+    else print NR, "none"
+}
+/^\| (R[0-9]+\.[0-9]+|all) \| [0-9]+ \|$/ { r = $2; gsub(/ /, "", r); print r, $3 + 0 }' \
+    docs/misra.md > "$out/stated.txt"
 
 # 2. cppcheck: every file in the fixed build, the float-only file in the float build.
 cpp() { # cache-dir numeric files...
@@ -39,9 +47,16 @@ cpp() { # cache-dir numeric files...
 } | sort -u > "$out/cppcheck.txt"
 
 # 3. Each finding against the deviations (a glob's * also matches '/').
-awk -F: -v devs="$out/deviations.txt" -v stale="$out/stale.txt" '
+# The counts the document states must be the measured ones (4.).
+awk -F: -v devs="$out/deviations.txt" -v stale="$out/stale.txt" -v stated="$out/stated.txt" '
 function glob_re(g) { gsub(/\./, "\\.", g); gsub(/\*/, ".*", g); gsub(/\?/, ".", g); return "^" g "$" }
-BEGIN { nd = 0; while ((getline line < devs) > 0) { split(line, a, " "); nd++; drule[nd] = a[1]; dre[nd] = glob_re(a[2]); dtext[nd] = line } }
+BEGIN {
+    nd = 0
+    while ((getline line < devs) > 0) {
+        split(line, a, " "); nd++; drule[nd] = a[1]; dre[nd] = glob_re(a[2]); drow[nd] = a[3]
+        dtext[nd] = a[1] " " a[2]
+    }
+}
 {
     file = $1; id = $3; rule = id; listed = 0
     if (sub(/^misra-c2012-/, "", rule)) {
@@ -52,9 +67,20 @@ BEGIN { nd = 0; while ((getline line < devs) > 0) { split(line, a, " "); nd++; d
 END {
     for (r in dev) printf "  misra %-6s %4d (listed deviations)\n", r, dev[r] | "sort -V 1>&2"
     close("sort -V 1>&2")
-    for (i = 1; i <= nd; i++) if (!used[i]) print dtext[i] > stale
-    printf "cppcheck: %d findings, %d listed as deviations, %d not listed\n", ndev + bad, ndev, bad
-    exit bad > 0
+    for (i = 1; i <= nd; i++) { row[drow[i]] += used[i]; if (!used[i]) print dtext[i] > stale }
+    for (r in dev) total["R" r] = dev[r]
+    total["all"] = ndev
+    while ((getline line < stated) > 0) {
+        split(line, a, " ")
+        if (a[1] ~ /^[0-9]+$/) { got = row[a[1]] + 0; what = "docs/misra.md:" a[1] ": the row" }
+        else { got = total[a[1]] + 0; what = "docs/misra.md: the total " a[1] }
+        if (a[2] != got) { print "  " what " states " a[2] " findings, measured " got; miscount++ }
+        seen[a[1]] = 1
+    }
+    for (r in total) if (!seen[r]) { print "  docs/misra.md: no total row | " r " | " total[r] " |"; miscount++ }
+    printf "cppcheck: %d findings, %d listed as deviations, %d not listed", ndev + bad, ndev, bad
+    printf "%s\n", miscount ? ", " miscount " counts in docs/misra.md to update" : ""
+    exit (bad > 0 || miscount > 0)
 }' "$out/cppcheck.txt" > "$out/cppcheck-report.txt"
 cpp_status=$?
 cat "$out/cppcheck-report.txt"
