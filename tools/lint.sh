@@ -47,7 +47,7 @@ cpp() { # cache-dir numeric files...
 } | sort -u > "$out/cppcheck.txt"
 
 # 3. Each finding against the deviations (a glob's * also matches '/').
-# The counts the document states must be the measured ones (4.).
+# The counts the document states must be the measured ones.
 awk -F: -v devs="$out/deviations.txt" -v stale="$out/stale.txt" -v stated="$out/stated.txt" '
 function glob_re(g) { gsub(/\./, "\\.", g); gsub(/\*/, ".*", g); gsub(/\?/, ".", g); return "^" g "$" }
 BEGIN {
