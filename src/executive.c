@@ -262,13 +262,8 @@ bool exec_check_scenario(const exec_config *cfg, const scenario *scn, scenario_e
         const scenario_event *ev = &scn->events[k];
         const char *why = unmodelled(cfg, ev->command);
         if (why != NULL) {
-            const char *name = scenario_command_names[ev->command];
-            size_t n = 0;
-            while (n < sizeof err->field - 1u && name[n] != '\0') {
-                err->field[n] = name[n];
-                n++;
-            }
-            err->field[n] = '\0';
+            (void)fmt_format(err->field, sizeof err->field, "%s",
+                             scenario_command_names[ev->command]);
             err->line = ev->line;
             (void)fmt_format(err->message, sizeof err->message, "%s", why);
             return false;

@@ -50,6 +50,22 @@ static void ut_fail_header(const char *file, int line) {
     fmt_print("        %s:%d: ", file, line);
 }
 
+size_t ut_text_len(const char *s) {
+    size_t n = 0;
+    while (s[n] != '\0') {
+        n++;
+    }
+    return n;
+}
+
+bool ut_text_equal(const char *a, const char *b) {
+    size_t i = 0;
+    while (a[i] != '\0' && a[i] == b[i]) {
+        i++;
+    }
+    return a[i] == b[i];
+}
+
 bool ut_check(bool ok, const char *file, int line, const char *expr) {
     if (!ok) {
         ut_fail_header(file, line);

@@ -13,6 +13,7 @@
 #define UUV_UT_H
 
 #include <stdbool.h>
+#include <stddef.h>
 #include <stdint.h>
 
 void ut_suite_begin(const char *name);
@@ -24,6 +25,10 @@ bool ut_check_int(long long actual, long long expected, const char *file, int li
                   const char *expr);
 /* Prints an informational line, indented under the current test. */
 void ut_info(const char *format, ...) __attribute__((format(printf, 1, 2)));
+
+/* Length of a NUL-terminated text, and whether two texts are equal (no libc on targets). */
+size_t ut_text_len(const char *s);
+bool ut_text_equal(const char *a, const char *b);
 
 /* Ends the run: prints "N passed, N failed" and returns the failed count. */
 unsigned ut_finish(void);

@@ -505,14 +505,6 @@ static void test_params(void) {
     UT_CHECK(b.bad_input_frames == 1u && b.soc == 0.5);
 }
 
-static bool same_text(const char *a, const char *b) {
-    size_t k = 0u;
-    while (a[k] != '\0' && a[k] == b[k]) {
-        k++;
-    }
-    return a[k] == b[k];
-}
-
 static void test_edges(void) {
     static battery_params q;
     volatile double zero = 0.0;
@@ -574,7 +566,7 @@ static void test_edges(void) {
     for (int k = 0; k < 9; k++) {
         ok = ok && texts[k] != NULL && texts[k][0] != '\0';
         for (int j = 0; j < k; j++) {
-            ok = ok && !same_text(texts[j], texts[k]);
+            ok = ok && !ut_text_equal(texts[j], texts[k]);
         }
     }
     UT_CHECK(ok);

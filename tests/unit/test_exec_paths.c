@@ -24,17 +24,9 @@ static exec ex;
 static exec_frame recs[MAX_RECS];
 static uint32_t n_recs;
 
-static size_t text_len(const char *s) {
-    size_t n = 0;
-    while (s[n] != '\0') {
-        n++;
-    }
-    return n;
-}
-
 static bool load(const char *text) {
     scenario_error err;
-    return scenario_parse(&scn, text, text_len(text), &err);
+    return scenario_parse(&scn, text, ut_text_len(text), &err);
 }
 
 static void take_record(void) {

@@ -14,14 +14,6 @@ void suite_executive(void);
 static scenario scn;
 static exec ex;
 
-static size_t text_len(const char *s) {
-    size_t n = 0;
-    while (s[n] != '\0') {
-        n++;
-    }
-    return n;
-}
-
 /* Documented settling time of the speed step (docs/multirate.md). */
 #define SETTLE_LIMIT_S 1.0
 #define RPM_PER_RADPS (30.0 / 3.14159265358979323846)
@@ -186,19 +178,11 @@ static void test_desk_runs(const exec_config *base) {
     }
 }
 
-static bool same_text(const char *a, const char *b) {
-    size_t i = 0;
-    while (a[i] != '\0' && a[i] == b[i]) {
-        i++;
-    }
-    return a[i] == b[i];
-}
-
 /* Parses text into *s and checks it against cfg; *err says why not. */
 static bool check_text(const exec_config *cfg, const char *text, scenario_error *err) {
     static scenario s;
     *err = (scenario_error){0};
-    return scenario_parse(&s, text, text_len(text), err) && exec_check_scenario(cfg, &s, err);
+    return scenario_parse(&s, text, ut_text_len(text), err) && exec_check_scenario(cfg, &s, err);
 }
 
 /*
@@ -232,7 +216,7 @@ static void test_scenario_check(void) {
     for (size_t k = 0; k < sizeof refused / sizeof refused[0]; k++) {
         UT_CHECK(!check_text(&cfg, refused[k][0], &err));
         UT_EQ_INT(err.line, 2u);
-        UT_CHECK(same_text(err.field, refused[k][1]) && err.message[0] != '\0');
+        UT_CHECK(ut_text_equal(err.field, refused[k][1]) && err.message[0] != '\0');
     }
 
     /* The vessel plant: the first drive fault is line 3's dc_cap; fin_jam passes. */
@@ -240,14 +224,14 @@ static void test_scenario_check(void) {
     cfg.plant = EXEC_PLANT_VESSEL;
     UT_CHECK(!check_text(&cfg, all, &err));
     UT_EQ_INT(err.line, 3u);
-    UT_CHECK(same_text(err.field, "dc_cap"));
+    UT_CHECK(ut_text_equal(err.field, "dc_cap"));
     UT_CHECK(check_text(&cfg, "at 0 n_rpm=800 fin_jam=rudder\n", &err));
 }
 
 void suite_executive(void) {
     const char *text = "duration 2\nat 0 n_rpm=1000\n";
     scenario_error err;
-    UT_CHECK(scenario_parse(&scn, text, text_len(text), &err));
+    UT_CHECK(scenario_parse(&scn, text, ut_text_len(text), &err));
     exec_config cfg;
     exec_config_default(&cfg);
 

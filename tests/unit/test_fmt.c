@@ -15,21 +15,13 @@
 
 void suite_fmt(void);
 
-static bool text_equal(const char *a, const char *b) {
-    size_t i = 0;
-    while (a[i] != '\0' && a[i] == b[i]) {
-        i++;
-    }
-    return a[i] == b[i];
-}
-
 /* Formats into a buffer and compares with the expected text. */
 static char out[96];
 
 #define FMT_IS(expected, ...)                                           \
     do {                                                                \
         (void)fmt_format(out, sizeof out, __VA_ARGS__);                 \
-        if (!UT_CHECK(text_equal(out, expected))) {                     \
+        if (!UT_CHECK(ut_text_equal(out, expected))) {                     \
             ut_info("got \"%s\", expected \"%s\"", out, expected);      \
         }                                                               \
     } while (0)
@@ -79,19 +71,19 @@ static void test_unusual(void) {
             "format that ends inside a conversion stops there");
     char buf[16];
     size_t n = fmt_unchecked(buf, sizeof buf, "<%s>", (const char *)NULL);
-    UT_CHECK(text_equal(buf, "<(null)>"));
+    UT_CHECK(ut_text_equal(buf, "<(null)>"));
     UT_EQ_INT(n, 8);
     n = fmt_unchecked(buf, sizeof buf, "%q|%");
-    UT_CHECK(text_equal(buf, "%q|"));
+    UT_CHECK(ut_text_equal(buf, "%q|"));
     UT_EQ_INT(n, 3);
     n = fmt_unchecked(buf, sizeof buf, "50%.");
-    UT_CHECK(text_equal(buf, "50"));
+    UT_CHECK(ut_text_equal(buf, "50"));
     UT_EQ_INT(n, 2);
 
     UT_TEST("formatter: the '0' flag pads after a leading sign (fmt.c), for text too; an "
             "empty text is all padding");
     (void)fmt_unchecked(out, sizeof out, "[%05s][%04s][%03s]", "+12", "-x", "");
-    UT_CHECK(text_equal(out, "[+0012][-00x][000]"));
+    UT_CHECK(ut_text_equal(out, "[+0012][-00x][000]"));
 
     UT_TEST("formatter: with capacity 0 nothing is written and the full length is returned");
     buf[0] = 'x';

@@ -12,24 +12,16 @@
 
 void suite_parse(void);
 
-static size_t text_len(const char *s) {
-    size_t n = 0;
-    while (s[n] != '\0') {
-        n++;
-    }
-    return n;
-}
-
 /* Parses all of s; true when it is a number and how many characters were used is `used`. */
 static bool number(const char *s, double *v, size_t used) {
     size_t u = 0;
-    return parse_number(s, text_len(s), v, &u) && u == used;
+    return parse_number(s, ut_text_len(s), v, &u) && u == used;
 }
 
 static bool refused(const char *s) {
     double v = 0.0;
     size_t u = 0;
-    return !parse_number(s, text_len(s), &v, &u);
+    return !parse_number(s, ut_text_len(s), &v, &u);
 }
 
 static void test_numbers(void) {

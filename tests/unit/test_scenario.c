@@ -10,29 +10,14 @@ void suite_scenario(void);
 static scenario scn;
 static scenario_error err;
 
-static size_t text_len(const char *s) {
-    size_t n = 0;
-    while (s[n] != '\0') {
-        n++;
-    }
-    return n;
-}
-
-static bool parse(const char *text) { return scenario_parse(&scn, text, text_len(text), &err); }
-
-static bool field_is(const char *name) {
-    size_t i = 0;
-    for (; name[i] != '\0' && err.field[i] == name[i]; i++) {
-    }
-    return name[i] == '\0' && err.field[i] == '\0';
-}
+static bool parse(const char *text) { return scenario_parse(&scn, text, ut_text_len(text), &err); }
 
 /* Expects parse failure at a line, naming a field. */
 static void expect_error(const char *text, unsigned line, const char *field) {
     bool ok = parse(text);
     UT_CHECK(!ok);
     UT_EQ_INT(err.line, line);
-    if (!UT_CHECK(field_is(field))) {
+    if (!UT_CHECK(ut_text_equal(err.field, field))) {
         ut_info("field '%s', expected '%s' (%s)", err.field, field, err.message);
     }
     UT_CHECK(err.message[0] != '\0');

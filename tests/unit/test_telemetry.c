@@ -155,14 +155,6 @@ static void test_damage(void) {
     UT_CHECK(tlm_status_text(TLM_BAD_CRC)[0] != '\0');
 }
 
-static bool same_text(const char *a, const char *b) {
-    size_t k = 0u;
-    while (a[k] != '\0' && a[k] == b[k]) {
-        k++;
-    }
-    return a[k] == b[k];
-}
-
 static void test_status_text(void) {
     UT_TEST("status texts: each of the six statuses has its own non-empty text, and so has "
             "an unknown value");
@@ -177,7 +169,7 @@ static void test_status_text(void) {
     for (size_t k = 0u; k < 7u; k++) {
         ok = ok && texts[k] != NULL && texts[k][0] != '\0';
         for (size_t j = 0u; j < k; j++) {
-            ok = ok && !same_text(texts[j], texts[k]);
+            ok = ok && !ut_text_equal(texts[j], texts[k]);
         }
     }
     UT_CHECK(ok);

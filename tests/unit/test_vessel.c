@@ -37,14 +37,6 @@ static double rel_err(double got, double expected) {
     return (expected != 0.0) ? d / math_fabs_f64(expected) : d;
 }
 
-static bool str_eq(const char *a, const char *b) {
-    while ((*a != '\0') && (*a == *b)) {
-        a++;
-        b++;
-    }
-    return *a == *b;
-}
-
 static vessel_cmd cmd_of(const double c[5]) {
     vessel_cmd cmd = {c[0], c[1], c[2], c[3], c[4], c[4], 0.0, 0.0};
     return cmd;
@@ -90,7 +82,7 @@ static void test_names_and_mass(void) {
         "delta_r_rad", "delta_s_rad", "delta_bp_rad", "delta_bs_rad", "n_rpm"};
     UT_TEST("state names: the 17 names in the order of the reference CSV header");
     for (int i = 0; i < VESSEL_NSTATES; i++) {
-        UT_CHECK(str_eq(vessel_state_names[i], header[i]));
+        UT_CHECK(ut_text_equal(vessel_state_names[i], header[i]));
     }
 
     UT_TEST("mass matrix: M_RB + M_A equals npsauv_mass_matrix.csv to 1e-12 relative");
