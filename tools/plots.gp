@@ -16,9 +16,18 @@ set xlabel 'East y [m]'
 set ylabel 'North x [m]'
 set zlabel 'depth z [m]' rotate
 set view 60, 30
-set zrange [*:*] reverse
-splot tel using 'y_m':'x_m':'z_m' with lines lw 2 title 'path'
+# The floor at the deepest point, with the path's shadow on it (the track
+# over ground) and a mark where the run starts.
+stats tel using 'z_m' nooutput
+floor = (STATS_max > 0) ? STATS_max : 1
+set zrange [floor:0]
+set xyplane at floor
+set border 4095 lc rgb '#808080'
+splot tel using 'y_m':'x_m':(floor) with lines lc rgb '#b0b0b0' lw 1 title 'track over ground', \
+      tel using 'y_m':'x_m':'z_m' with lines lc rgb '#9400d3' lw 2 title 'path', \
+      tel every ::0::0 using 'y_m':'x_m':'z_m' with points pt 7 ps 1.2 lc rgb '#009e73' title 'start'
 set zrange [*:*] noreverse
+set border 31 lc rgb 'black'
 
 set output dir.'/depth.png'
 set title 'Depth'

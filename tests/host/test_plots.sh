@@ -1,0 +1,47 @@
+#!/bin/sh
+# The plots of make run (tools/plots.gp): a short run of the default
+# mission with a trace window, then the script. gnuplot must finish without
+# a message (a missing column or an empty data set gives one), and each of
+# the seven pictures must be a PNG with something drawn in it.
+#   test_plots.sh UUVSIM
+# Prints one line per check and "N passed, N failed".
+set -u
+uuvsim=$1
+tmp=$(mktemp -d)
+trap 'rm -rf "$tmp"' EXIT
+pass=0
+fail=0
+
+ok() { pass=$((pass + 1)); echo "ok   $1"; }
+bad() { fail=$((fail + 1)); echo "FAIL $1: $2"; }
+
+if "$uuvsim" --quiet --scenario scenarios/default.scn --duration 31 --csv "$tmp/telemetry.csv" \
+    --trace "$tmp/trace.csv" --trace-from 30 --trace-to 30.02 2>"$tmp/err"; then
+    ok "31 s of the default mission with a 20 ms trace"
+else
+    bad "31 s of the default mission with a 20 ms trace" "$(cat "$tmp/err")"
+fi
+
+if ! command -v gnuplot >/dev/null 2>&1; then
+    bad "gnuplot" "not installed (make test installs it: tools/ensure-deps.sh)"
+elif gnuplot -e "dir='$tmp'" tools/plots.gp >"$tmp/gp.out" 2>&1 && [ ! -s "$tmp/gp.out" ]; then
+    ok "tools/plots.gp runs without a message"
+else
+    bad "tools/plots.gp runs without a message" "$(head -5 "$tmp/gp.out")"
+fi
+
+# The PNG signature's readable bytes, and a size no blank frame reaches
+# (a frame with axes and no data is about 11 kB at 900 x 600).
+for p in trajectory depth speed shaft currents dc_link battery; do
+    f="$tmp/$p.png"
+    size=0
+    [ -f "$f" ] && size=$(wc -c <"$f")
+    if [ "$size" -gt 15000 ] && [ "$(od -An -c -j1 -N3 "$f" | tr -d ' ')" = "PNG" ]; then
+        ok "$p.png ($size bytes)"
+    else
+        bad "$p.png" "missing, not a PNG, or $size bytes"
+    fi
+done
+
+echo "$pass passed, $fail failed"
+[ "$fail" -eq 0 ]
