@@ -9,7 +9,8 @@
  * inverter; measures wall time, real-time factors and the errors against
  * the reference (RMS over the run of the difference, relative to the RMS
  * of the reference signal); times each segment's step on its own. Prints a
- * table on stderr and one JSON object on stdout.
+ * table on stderr, with the line of targets (docs/multirate.md, "Speed")
+ * met or not, and one JSON object on stdout.
  *
  * The averaged layer is also compared with the single-rate run of the
  * switching-event inverter (edges located inside the 2 us step), the
@@ -101,6 +102,11 @@ static double pos_rms(const run_data *a, const run_data *b) {
 typedef struct {
     double shaft, current, surge, position;
 } errors;
+
+/* How the bench reports a target: met or not. */
+static const char *met(bool ok) {
+    return ok ? "met" : "not met";
+}
 
 static errors compare(const run_data *a, const run_data *ref) {
     errors e;
@@ -238,15 +244,23 @@ int main(int argc, char **argv) {
     errors e = compare(&mr, &ref);
     double ns[5];
     segment_costs(&cfg, ns);
+    const double rtf_sw = sim_s / mr.wall_s;
+    const double rtf_avg = sim_s / avg_wall;
+    const double speedup = ref.wall_s / mr.wall_s;
+    const double err_max = (e.shaft > e.surge) ? e.shaft : e.surge;
 
     fprintf(stderr, "%s build, %.1f s of %s\n", UUV_NUMERIC_NAME, sim_s, argv[1]);
-    fprintf(stderr, "  real-time factor: switching %.0f, averaged %.0f\n", sim_s / mr.wall_s,
-            sim_s / avg_wall);
+    fprintf(stderr, "  real-time factor: switching %.0f, averaged %.0f\n", rtf_sw, rtf_avg);
     fprintf(stderr, "  cost per step: fast %.1f ns (%.1f ns in runs), motor %.1f ns, "
                     "controller %.1f ns, slow %.0f ns\n",
             ns[0], ns[4], ns[1], ns[2], ns[3]);
     fprintf(stderr, "  single-rate %.2f s, multi-rate %.4f s: speed-up %.0fx\n", ref.wall_s,
-            mr.wall_s, ref.wall_s / mr.wall_s);
+            mr.wall_s, speedup);
+    fprintf(stderr,
+            "  targets: real-time factor >= 100 switching (%s), >= 10000 averaged (%s); "
+            "speed-up >= 300 (%s) at shaft and surge errors <= 0.5 %% (%s)\n",
+            met(rtf_sw >= 100.0), met(rtf_avg >= 10000.0), met(speedup >= 300.0),
+            met(err_max <= 0.5));
     fprintf(stderr, "  errors vs single-rate (RMS, %% of reference RMS):\n");
     fprintf(stderr, "    %-16s %8s %8s %8s %8s\n", "coupling", "shaft", "current", "surge",
             "position");
@@ -257,9 +271,8 @@ int main(int argc, char **argv) {
            "\"err_surge_speed_pct\": %.6g, \"err_position_pct\": %.6g, "
            "\"ns_per_step\": {\"fast\": %.4g, \"fast_in_runs\": %.4g, \"medium\": %.4g, "
            "\"control\": %.4g, \"slow\": %.4g}, \"couplings\": [",
-           UUV_NUMERIC_NAME, sim_s, sim_s / mr.wall_s, sim_s / avg_wall,
-           ref.wall_s / mr.wall_s, ref.wall_s, mr.wall_s, e.shaft, e.current, e.surge,
-           e.position, ns[0], ns[4], ns[1], ns[2], ns[3]);
+           UUV_NUMERIC_NAME, sim_s, rtf_sw, rtf_avg, speedup, ref.wall_s, mr.wall_s, e.shaft,
+           e.current, e.surge, e.position, ns[0], ns[4], ns[1], ns[2], ns[3]);
     bool first = true;
     for (int dn = 0; dn < 4; dn++) {
         for (int up = 0; up < 3; up++) {
