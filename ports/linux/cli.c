@@ -34,7 +34,14 @@ const char cli_usage[] =
     "                           how the motor's currents reach the 2 us steps\n"
     "  --fast-to-slow avg|filter|sample\n"
     "                           how fast signals are reduced for slower segments\n"
-    "  --csv FILE               telemetry, one row per 100 ms\n"
+    "  --motor-frame T          the motor task's frame (default 100us), a whole\n"
+    "                           number of 2 us fast steps\n"
+    "  --control-frame T        the controller's frame (default 800us), a whole\n"
+    "                           number of motor frames\n"
+    "  --slow-frame T           the vessel's and the battery's frame (default 100ms),\n"
+    "                           a whole number of controller frames; T with its\n"
+    "                           unit: us, ms or s\n"
+    "  --csv FILE               telemetry, one row per slow frame (100 ms)\n"
     "  --trace FILE             every 2 us step between --trace-from and --trace-to [s]\n"
     "  --realtime               pace the run to the wall clock\n"
     "  --summary FILE           the summary as JSON, to a file\n"
@@ -64,7 +71,7 @@ static bool fail(char *err, size_t len, const char *format, ...) {
     return false;
 }
 
-typedef enum { OPT_FLAG, OPT_PATH, OPT_SECONDS, OPT_CHOICE } opt_kind;
+typedef enum { OPT_FLAG, OPT_PATH, OPT_SECONDS, OPT_CHOICE, OPT_FRAME } opt_kind;
 
 typedef struct {
     const char *name;
@@ -88,6 +95,9 @@ static const opt_spec options[] = {
     {"--inverter", OPT_CHOICE, "switching|averaged|event", FIELD(exec.inverter)},
     {"--slow-to-fast", OPT_CHOICE, "zoh|foh|deriv|stagger", FIELD(exec.down)},
     {"--fast-to-slow", OPT_CHOICE, "avg|filter|sample", FIELD(exec.up)},
+    {"--motor-frame", OPT_FRAME, NULL, FIELD(motor_frame_ns)},
+    {"--control-frame", OPT_FRAME, NULL, FIELD(control_frame_ns)},
+    {"--slow-frame", OPT_FRAME, NULL, FIELD(slow_frame_ns)},
     {"--single-rate", OPT_FLAG, NULL, FIELD(exec.single_rate)},
     {"--energy-audit", OPT_FLAG, NULL, FIELD(exec.energy_audit)},
     {"--realtime", OPT_FLAG, NULL, FIELD(realtime)},
@@ -110,6 +120,85 @@ static int choice_index(const char *choices, const char *value) {
         }
         p = end + 1;
     }
+}
+
+#define FRAME_MAX_NS 10000000000.0 /* [ns] 10 s, the executive's longest slow frame */
+
+const char *cli_frame_text(uint64_t ns, char *buf, size_t len) {
+    if (ns % 1000000000u == 0u) {
+        snprintf(buf, len, "%llu s", (unsigned long long)(ns / 1000000000u));
+    } else if (ns >= 1000000u) {
+        snprintf(buf, len, "%.9g ms", (double)ns * 1e-6);
+    } else {
+        snprintf(buf, len, "%.9g us", (double)ns * 1e-3);
+    }
+    return buf;
+}
+
+/* A frame length with its unit (us, ms, s) in whole nanoseconds; 0 if malformed. */
+static uint64_t frame_ns_of(const char *value) {
+    double v = 0.0;
+    size_t used = 0;
+    if (!parse_number(value, strlen(value), &v, &used)) {
+        return 0u;
+    }
+    const char *unit = value + used;
+    double scale = (strcmp(unit, "us") == 0)   ? 1e3
+                   : (strcmp(unit, "ms") == 0) ? 1e6
+                   : (strcmp(unit, "s") == 0)  ? 1e9
+                                               : 0.0;
+    double ns = v * scale;
+    if (!(ns >= 1.0 && ns <= FRAME_MAX_NS)) {
+        return 0u;
+    }
+    uint64_t whole = (uint64_t)(ns + 0.5);
+    double off = ns - (double)whole;
+    return (off < 1e-3 && off > -1e-3) ? whole : 0u;
+}
+
+/*
+ * The frames the options give (each a default where not given): the motor
+ * frame a whole number of fast steps, the controller's a whole number of
+ * motor frames, the slow one a whole number of controller frames.
+ */
+static bool apply_frames(cli_options *o, char *err, size_t err_len) {
+    exec_config *c = &o->exec;
+    exec_config d;
+    exec_config_default(&d);
+    const uint64_t fast = c->fast_ns;
+    const uint64_t motor = (o->motor_frame_ns != 0u) ? o->motor_frame_ns
+                                                       : (uint64_t)d.fast_ns * d.fast_per_medium;
+    const uint64_t control = (o->control_frame_ns != 0u) ? o->control_frame_ns
+                                                         : (uint64_t)d.fast_ns * d.fast_per_medium *
+                                                               d.medium_per_control;
+    const uint64_t slow = (o->slow_frame_ns != 0u) ? o->slow_frame_ns
+                                                   : (uint64_t)d.fast_ns * d.fast_per_medium *
+                                                         d.medium_per_slow;
+    char a[32], b[32];
+    if (motor % fast != 0u || motor / fast > 100000u) {
+        return fail(err, err_len,
+                    "option --motor-frame: expected a whole number of %s fast steps, at most "
+                    "100000 of them, got %s",
+                    cli_frame_text(fast, b, sizeof b), cli_frame_text(motor, a, sizeof a));
+    }
+    if (control % motor != 0u) {
+        return fail(err, err_len,
+                    "option --control-frame: expected a whole number of motor frames (%s), "
+                    "got %s%s",
+                    cli_frame_text(motor, b, sizeof b), cli_frame_text(control, a, sizeof a),
+                    (o->control_frame_ns != 0u) ? "" : " (the default: give --control-frame)");
+    }
+    if (slow % control != 0u) {
+        return fail(err, err_len,
+                    "option --slow-frame: expected a whole number of controller frames (%s), "
+                    "got %s%s",
+                    cli_frame_text(control, b, sizeof b), cli_frame_text(slow, a, sizeof a),
+                    (o->slow_frame_ns != 0u) ? "" : " (the default: give --slow-frame)");
+    }
+    c->fast_per_medium = (uint32_t)(motor / fast);
+    c->medium_per_control = (uint32_t)(control / motor);
+    c->medium_per_slow = (uint32_t)(slow / motor); /* below 2^32: slow <= 10 s, motor >= 2 us */
+    return true;
 }
 
 static bool set_option(const opt_spec *spec, const char *value, cli_options *o, char *err,
@@ -135,6 +224,17 @@ static bool set_option(const opt_spec *spec, const char *value, cli_options *o, 
                         value);
         }
         *(double *)(void *)field = v;
+        return true;
+    }
+    case OPT_FRAME: {
+        uint64_t ns = frame_ns_of(value);
+        if (ns == 0u) {
+            return fail(err, err_len,
+                        "option %s: expected a time with its unit (us, ms or s) up to 10 s, "
+                        "such as 200us or 50ms, got '%s'",
+                        spec->name, value);
+        }
+        *(uint64_t *)(void *)field = ns;
         return true;
     }
     case OPT_CHOICE: {
@@ -196,6 +296,9 @@ bool cli_parse(int argc, char **argv, cli_options *o, char *err, size_t err_len)
     }
     if (o->scenario_path == NULL) {
         return fail(err, err_len, "no scenario: expected --scenario FILE (see --help)");
+    }
+    if (!apply_frames(o, err, err_len)) {
+        return false;
     }
     if (o->trace_path != NULL) {
         if (o->exec.plant != EXEC_PLANT_FULL) {

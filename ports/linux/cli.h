@@ -7,6 +7,7 @@
 
 #include <stdbool.h>
 #include <stddef.h>
+#include <stdint.h>
 
 #include "executive.h"
 
@@ -22,6 +23,9 @@ typedef struct {
     double trace_from_s;        /* --trace-from */
     double trace_to_s;          /* --trace-to */
     exec_config exec;           /* plant, laws, inverter, couplings, rates, duration */
+    uint64_t motor_frame_ns;    /* --motor-frame; 0: the default (exec_config_default) */
+    uint64_t control_frame_ns;  /* --control-frame; 0: the default */
+    uint64_t slow_frame_ns;     /* --slow-frame; 0: the default */
     bool realtime;
     bool json;                  /* the JSON summary on stdout (instead of the text one) */
     bool quiet;                 /* no text summary, no progress line */
@@ -32,6 +36,9 @@ typedef struct {
  * (without the program name) into err and returns false.
  */
 bool cli_parse(int argc, char **argv, cli_options *o, char *err, size_t err_len);
+
+/* A frame length for messages: "100 us", "0.8 ms", "2 s" (into buf, returned). */
+const char *cli_frame_text(uint64_t ns, char *buf, size_t len);
 
 extern const char cli_usage[];
 

@@ -90,6 +90,14 @@ static void print_energy_balance(FILE *f_out, const exec *e) {
             c->e_batt_j != 0.0 ? 100.0 * residual / c->e_batt_j : 0.0);
 }
 
+/* The frames the options chose [ns]: fast step, motor task, controller, slow step. */
+static void frames_ns(const exec_config *c, uint64_t ns[4]) {
+    ns[0] = c->fast_ns;
+    ns[1] = ns[0] * c->fast_per_medium;
+    ns[2] = ns[1] * c->medium_per_control;
+    ns[3] = ns[1] * c->medium_per_slow;
+}
+
 static void print_json(FILE *f_out, const run_result *r) {
     const exec *e = r->e;
     const exec_frame *f = &r->last;
@@ -102,6 +110,11 @@ static void print_json(FILE *f_out, const run_result *r) {
            inverter_names[e->cfg.inverter]);
     fprintf(f_out, "  \"slow_to_fast\": \"%s\",\n  \"fast_to_slow\": \"%s\",\n", down_names[e->cfg.down],
            up_names[e->cfg.up]);
+    uint64_t ns[4];
+    frames_ns(&r->o->exec, ns);
+    fprintf(f_out, "  \"frames_s\": {\"fast\": %.9g, \"motor\": %.9g, \"control\": %.9g, "
+            "\"slow\": %.9g},\n", 1e-9 * (double)ns[0], 1e-9 * (double)ns[1],
+            1e-9 * (double)ns[2], 1e-9 * (double)ns[3]);
     fprintf(f_out, "  \"sim_time_s\": %.9g,\n  \"wall_time_s\": %.6g,\n  \"realtime_factor\": %.6g,\n",
            sim_s, r->wall_s, r->wall_s > 0.0 ? sim_s / r->wall_s : 0.0);
     fprintf(f_out, "  \"steps\": {\"fast\": %llu, \"medium\": %llu, \"control\": %llu, \"slow\": %llu},\n",
@@ -165,6 +178,22 @@ static void print_text(const run_result *r) {
     if (e->cfg.plant == EXEC_PLANT_FULL) {
         printf(", inverter %s, couplings %s/%s", inverter_names[e->cfg.inverter],
                down_names[e->cfg.down], up_names[e->cfg.up]);
+    }
+    uint64_t ns[4];
+    char t[4][32];
+    frames_ns(&r->o->exec, ns);
+    for (int k = 0; k < 4; k++) {
+        (void)cli_frame_text(ns[k], t[k], sizeof t[k]);
+    }
+    if (e->cfg.plant != EXEC_PLANT_FULL) {
+        printf("\nframe: %s", t[3]);
+    } else if (e->cfg.single_rate) {
+        printf("\nframes: every segment at %s, controller %s, records every %s", t[0], t[2],
+               t[3]);
+    } else if (e->cfg.inverter == DRIVE_INVERTER_AVERAGED) {
+        printf("\nframes: the drive at the controller's %s, slow %s", t[2], t[3]);
+    } else {
+        printf("\nframes: fast %s, motor %s, controller %s, slow %s", t[0], t[1], t[2], t[3]);
     }
     printf("\nsimulated %.1f s in %.3f s (%.0fx real time)\n", f->t_s, r->wall_s, rtf);
     if (e->cfg.plant == EXEC_PLANT_FULL) {

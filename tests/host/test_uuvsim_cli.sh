@@ -75,6 +75,22 @@ realtime() {
 }
 check "realtime: the run is paced to the wall clock and reports its lag" realtime
 
+# frames: a 200 us motor frame and a 40 ms slow frame give 10000 motor steps, 2500
+# controller steps (800 us) and 50 slow steps in 2 s, one CSV row per 40 ms, and the
+# shaft still at its command.
+frames() {
+    "$uuvsim" --json --scenario scenarios/bench_2s.scn --motor-frame 200us --slow-frame 0.04s \
+        --csv "$tmp/f.csv" >"$tmp/f.json" &&
+        grep -q '"frames_s": {"fast": 2e-06, "motor": 0.0002, "control": 0.0008, "slow": 0.04}' \
+            "$tmp/f.json" &&
+        grep -q '"steps": {"fast": 1000000, "medium": 10000, "control": 2500, "slow": 50}' \
+            "$tmp/f.json" &&
+        [ "$(wc -l <"$tmp/f.csv")" -eq 52 ] &&
+        awk -F'[:,]' '/"n_rpm"/ { for (i = 1; i < NF; i++) if ($i ~ /"n_rpm"/) v = $(i + 1) }
+                      END { exit !(v > 995 && v < 1005) }' "$tmp/f.json"
+}
+check "frames: --motor-frame and --slow-frame set the steps and the records" frames
+
 printf 'duration 10\nat 1 rudder=abc\n' >"$tmp/bad1.scn"
 expect_error "error: malformed value names file, line and field" \
     "bad1.scn:2: field 'rudder'" "$uuvsim" --scenario "$tmp/bad1.scn" --csv "$tmp/bad.csv"
@@ -99,6 +115,16 @@ expect_error "error: a drive fault with the vessel plant" \
     "$uuvsim" --plant vessel --scenario "$tmp/fault.scn" --csv "$tmp/bad.csv"
 expect_error "error: bad --plant value" "expected one of vessel|full" \
     "$uuvsim" --plant boat --scenario scenarios/turning_circle.scn
+
+expect_error "error: a motor frame that is not whole fast steps" \
+    "option --motor-frame: expected a whole number of 2 us fast steps.*got 3 us" \
+    "$uuvsim" --motor-frame 3us --scenario scenarios/bench_2s.scn --csv "$tmp/bad.csv"
+expect_error "error: a frame without its unit" \
+    "option --slow-frame: expected a time with its unit .*got '100'" \
+    "$uuvsim" --slow-frame 100 --scenario scenarios/bench_2s.scn
+expect_error "error: a motor frame the default controller frame is not a multiple of" \
+    "option --control-frame: .*motor frames \\(150 us\\), got 800 us \\(the default" \
+    "$uuvsim" --motor-frame 150us --scenario scenarios/bench_2s.scn
 
 echo "$pass passed, $fail failed"
 [ $fail -eq 0 ]
