@@ -308,9 +308,11 @@ int main(int argc, char **argv) {
     printf("], \"motor_frames\": [");
     for (size_t k = 0; k < sizeof motor_us / sizeof motor_us[0]; k++) {
         c = cfg;
-        c.fast_per_medium = motor_us[k] * 1000u / c.fast_ns;
-        c.medium_per_control = 800u / motor_us[k];
-        c.medium_per_slow = 100000u / motor_us[k];
+        const uint64_t motor_ns = (uint64_t)motor_us[k] * 1000u;
+        const uint64_t default_ns = (uint64_t)cfg.fast_ns * cfg.fast_per_medium;
+        c.fast_per_medium = (uint32_t)(motor_ns / cfg.fast_ns);
+        c.medium_per_control = (uint32_t)(default_ns * cfg.medium_per_control / motor_ns);
+        c.medium_per_slow = (uint32_t)(default_ns * cfg.medium_per_slow / motor_ns);
         double wall = 1e300;
         for (int r = 0; r < 3; r++) {
             if (run(&c, &cpl) != 0) {

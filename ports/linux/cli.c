@@ -156,6 +156,25 @@ static uint64_t frame_ns_of(const char *value) {
     return (off < 1e-3 && off > -1e-3) ? whole : 0u;
 }
 
+void cli_frames_ns(const exec_config *c, uint64_t ns[4]) {
+    ns[0] = c->fast_ns;
+    ns[1] = ns[0] * c->fast_per_medium;
+    ns[2] = ns[1] * c->medium_per_control;
+    ns[3] = ns[1] * c->medium_per_slow;
+}
+
+/* Whether the frame outer (option opt) is a whole number of inner frames (what). */
+static bool frame_divides(const char *opt, const char *what, uint64_t inner, uint64_t outer,
+                          bool given, char *err, size_t err_len) {
+    if (outer % inner == 0u) {
+        return true;
+    }
+    char a[32], b[32];
+    return fail(err, err_len, "option %s: expected a whole number of %s (%s), got %s%s%s%s",
+                opt, what, cli_frame_text(inner, b, sizeof b), cli_frame_text(outer, a, sizeof a),
+                given ? "" : " (the default: give ", given ? "" : opt, given ? "" : ")");
+}
+
 /*
  * The frames the options give (each a default where not given): the motor
  * frame a whole number of fast steps, the controller's a whole number of
@@ -163,37 +182,22 @@ static uint64_t frame_ns_of(const char *value) {
  */
 static bool apply_frames(cli_options *o, char *err, size_t err_len) {
     exec_config *c = &o->exec;
-    exec_config d;
-    exec_config_default(&d);
-    const uint64_t fast = c->fast_ns;
-    const uint64_t motor = (o->motor_frame_ns != 0u) ? o->motor_frame_ns
-                                                       : (uint64_t)d.fast_ns * d.fast_per_medium;
-    const uint64_t control = (o->control_frame_ns != 0u) ? o->control_frame_ns
-                                                         : (uint64_t)d.fast_ns * d.fast_per_medium *
-                                                               d.medium_per_control;
-    const uint64_t slow = (o->slow_frame_ns != 0u) ? o->slow_frame_ns
-                                                   : (uint64_t)d.fast_ns * d.fast_per_medium *
-                                                         d.medium_per_slow;
-    char a[32], b[32];
-    if (motor % fast != 0u || motor / fast > 100000u) {
-        return fail(err, err_len,
-                    "option --motor-frame: expected a whole number of %s fast steps, at most "
-                    "100000 of them, got %s",
-                    cli_frame_text(fast, b, sizeof b), cli_frame_text(motor, a, sizeof a));
+    uint64_t ns[4];
+    cli_frames_ns(c, ns); /* the defaults (exec_config_default) */
+    const uint64_t fast = ns[0];
+    const uint64_t motor = (o->motor_frame_ns != 0u) ? o->motor_frame_ns : ns[1];
+    const uint64_t control = (o->control_frame_ns != 0u) ? o->control_frame_ns : ns[2];
+    const uint64_t slow = (o->slow_frame_ns != 0u) ? o->slow_frame_ns : ns[3];
+    if (!frame_divides("--motor-frame", "fast steps", fast, motor, true, err, err_len) ||
+        !frame_divides("--control-frame", "motor frames", motor, control,
+                       o->control_frame_ns != 0u, err, err_len) ||
+        !frame_divides("--slow-frame", "controller frames", control, slow,
+                       o->slow_frame_ns != 0u, err, err_len)) {
+        return false;
     }
-    if (control % motor != 0u) {
-        return fail(err, err_len,
-                    "option --control-frame: expected a whole number of motor frames (%s), "
-                    "got %s%s",
-                    cli_frame_text(motor, b, sizeof b), cli_frame_text(control, a, sizeof a),
-                    (o->control_frame_ns != 0u) ? "" : " (the default: give --control-frame)");
-    }
-    if (slow % control != 0u) {
-        return fail(err, err_len,
-                    "option --slow-frame: expected a whole number of controller frames (%s), "
-                    "got %s%s",
-                    cli_frame_text(control, b, sizeof b), cli_frame_text(slow, a, sizeof a),
-                    (o->slow_frame_ns != 0u) ? "" : " (the default: give --slow-frame)");
+    if (motor / fast > 100000u) {
+        return fail(err, err_len, "option --motor-frame: expected at most 100000 fast steps, got %llu",
+                    (unsigned long long)(motor / fast));
     }
     c->fast_per_medium = (uint32_t)(motor / fast);
     c->medium_per_control = (uint32_t)(control / motor);

@@ -37,6 +37,9 @@ typedef struct {
  */
 bool cli_parse(int argc, char **argv, cli_options *o, char *err, size_t err_len);
 
+/* The frames of a configuration [ns]: fast step, motor task, controller, slow step. */
+void cli_frames_ns(const exec_config *c, uint64_t ns[4]);
+
 /* A frame length for messages: "100 us", "0.8 ms", "2 s" (into buf, returned). */
 const char *cli_frame_text(uint64_t ns, char *buf, size_t len);
 

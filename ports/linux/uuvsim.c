@@ -90,14 +90,6 @@ static void print_energy_balance(FILE *f_out, const exec *e) {
             c->e_batt_j != 0.0 ? 100.0 * residual / c->e_batt_j : 0.0);
 }
 
-/* The frames the options chose [ns]: fast step, motor task, controller, slow step. */
-static void frames_ns(const exec_config *c, uint64_t ns[4]) {
-    ns[0] = c->fast_ns;
-    ns[1] = ns[0] * c->fast_per_medium;
-    ns[2] = ns[1] * c->medium_per_control;
-    ns[3] = ns[1] * c->medium_per_slow;
-}
-
 static void print_json(FILE *f_out, const run_result *r) {
     const exec *e = r->e;
     const exec_frame *f = &r->last;
@@ -111,7 +103,7 @@ static void print_json(FILE *f_out, const run_result *r) {
     fprintf(f_out, "  \"slow_to_fast\": \"%s\",\n  \"fast_to_slow\": \"%s\",\n", down_names[e->cfg.down],
            up_names[e->cfg.up]);
     uint64_t ns[4];
-    frames_ns(&r->o->exec, ns);
+    cli_frames_ns(&r->o->exec, ns);
     fprintf(f_out, "  \"frames_s\": {\"fast\": %.9g, \"motor\": %.9g, \"control\": %.9g, "
             "\"slow\": %.9g},\n", 1e-9 * (double)ns[0], 1e-9 * (double)ns[1],
             1e-9 * (double)ns[2], 1e-9 * (double)ns[3]);
@@ -181,7 +173,7 @@ static void print_text(const run_result *r) {
     }
     uint64_t ns[4];
     char t[4][32];
-    frames_ns(&r->o->exec, ns);
+    cli_frames_ns(&r->o->exec, ns);
     for (int k = 0; k < 4; k++) {
         (void)cli_frame_text(ns[k], t[k], sizeof t[k]);
     }

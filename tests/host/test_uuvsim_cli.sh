@@ -117,13 +117,13 @@ expect_error "error: bad --plant value" "expected one of vessel|full" \
     "$uuvsim" --plant boat --scenario scenarios/turning_circle.scn
 
 expect_error "error: a motor frame that is not whole fast steps" \
-    "option --motor-frame: expected a whole number of 2 us fast steps.*got 3 us" \
+    "option --motor-frame: expected a whole number of fast steps \\(2 us\\), got 3 us" \
     "$uuvsim" --motor-frame 3us --scenario scenarios/bench_2s.scn --csv "$tmp/bad.csv"
 expect_error "error: a frame without its unit" \
     "option --slow-frame: expected a time with its unit .*got '100'" \
     "$uuvsim" --slow-frame 100 --scenario scenarios/bench_2s.scn
 expect_error "error: a motor frame the default controller frame is not a multiple of" \
-    "option --control-frame: .*motor frames \\(150 us\\), got 800 us \\(the default" \
+    "option --control-frame: .*motor frames \\(150 us\\), got 800 us \\(the default: give --control-frame\\)" \
     "$uuvsim" --motor-frame 150us --scenario scenarios/bench_2s.scn
 
 echo "$pass passed, $fail failed"
