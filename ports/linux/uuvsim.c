@@ -7,6 +7,7 @@
  * run stopped early (an overrun) or an internal failure.
  */
 #include <errno.h>
+#include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -201,10 +202,18 @@ static void print_text(const run_result *r) {
                    f->trip != 0u ? trip_names[f->trip < TRIP_NAMES ? f->trip : 0u] : "not tripped");
         }
     }
-    printf("final: u %.3f m/s, N %.1f m, E %.1f m, depth %.2f m, heading %.1f deg, "
-           "shaft %.0f rpm\n",
+    /* The state psi is unwrapped (it counts whole turns); the line gives the
+     * compass heading in [0, 360) and psi itself beside it. */
+    const double psi_deg = f->x[VESSEL_PSI_RAD] * 57.29577951308232;
+    long long tenths = llround(psi_deg * 10.0) % 3600;
+    if (tenths < 0) {
+        tenths += 3600;
+    }
+    const double heading_deg = (double)tenths / 10.0;
+    printf("final: u %.3f m/s, N %.1f m, E %.1f m, depth %.2f m, heading %.1f deg "
+           "(psi %.1f deg unwrapped), shaft %.0f rpm\n",
            f->x[VESSEL_U_MPS], f->x[VESSEL_X_M], f->x[VESSEL_Y_M], f->x[VESSEL_Z_M],
-           f->x[VESSEL_PSI_RAD] * 57.29577951308232, f->x[VESSEL_N_RPM]);
+           heading_deg, psi_deg, f->x[VESSEL_N_RPM]);
     if (m->turn_executed && !m->zigzag) {
         printf("turning circle:");
         if (m->has_advance) {

@@ -91,6 +91,17 @@ frames() {
 }
 check "frames: --motor-frame and --slow-frame set the steps and the records" frames
 
+# heading: the summary's compass heading is psi wrapped into [0, 360), with psi beside it.
+heading() {
+    printf 'duration 0.1\ninit psi_rad=-3.4\n' >"$tmp/h.scn" &&
+        "$uuvsim" --plant vessel --scenario "$tmp/h.scn" >"$tmp/h.txt" &&
+        grep -q 'heading 165.2 deg (psi -194.8 deg unwrapped)' "$tmp/h.txt" &&
+        printf 'duration 0.1\ninit psi_rad=6.2830\n' >"$tmp/h.scn" &&
+        "$uuvsim" --plant vessel --scenario "$tmp/h.scn" >"$tmp/h.txt" &&
+        grep -q 'heading 0.0 deg (psi 360.0 deg unwrapped)' "$tmp/h.txt"
+}
+check "summary: the heading is wrapped to [0, 360) beside the unwrapped psi" heading
+
 printf 'duration 10\nat 1 rudder=abc\n' >"$tmp/bad1.scn"
 expect_error "error: malformed value names file, line and field" \
     "bad1.scn:2: field 'rudder'" "$uuvsim" --scenario "$tmp/bad1.scn" --csv "$tmp/bad.csv"
