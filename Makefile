@@ -34,8 +34,8 @@ NUM_float := 2
 
 # ---- Sources --------------------------------------------------------------
 
-SRC_C := $(sort $(wildcard src/*.c src/*/*.c src/*/*/*.c))
-SRC_H := $(sort $(wildcard src/*.h src/*/*.h src/*/*/*.h))
+SRC_C := $(sort $(shell find src -name "*.c"))
+SRC_H := $(sort $(shell find src -name "*.h"))
 TEST_C := tests/harness/ut.c tests/harness/runner.c $(sort $(wildcard tests/unit/test_*.c))
 SUITES := $(patsubst tests/unit/test_%.c,%,$(sort $(wildcard tests/unit/test_*.c)))
 LINUX_PORT_C := $(sort $(wildcard ports/linux/hal_*.c))
@@ -100,7 +100,7 @@ $$($(1)_DIR)/uuvsim: $$($(1)_SRC_O) $$($(1)_UUVSIM_O)
 $$($(1)_DIR)/bench: $$($(1)_SRC_O) $$($(1)_BENCH_O)
 	$(2) $(5) -o $$@ $$^ -lm
 
--include $$(wildcard $$($(1)_DIR)/obj/*/*.d $$($(1)_DIR)/obj/*/*/*.d $$($(1)_DIR)/obj/*/*/*/*.d)
+-include $$(wildcard $$($(1)_DIR)/obj/*/*.d $$($(1)_DIR)/obj/*/*/*.d $$($(1)_DIR)/obj/*/*/*/*.d $$($(1)_DIR)/obj/*/*/*/*/*.d $$($(1)_DIR)/obj/*/*/*/*/*/*.d)
 HOST_VARIANTS += $(1)
 endef
 
@@ -157,7 +157,7 @@ FW_SIM_C := ports/cortexm/fw_main.c
 # parsing, formatting) is compiled for size: the Cortex-M3's image must
 # fit in 64 KiB. The results do not change (no reassociation, no
 # contraction at any level).
-FW_SIZE_C := $(wildcard src/models/vessel*.c src/models/battery*.c src/math/*_f64.c) \
+FW_SIZE_C := $(wildcard src/models/vessel/*.c src/models/battery/*.c src/math/*_f64.c) \
              src/math/rem_pio2.c src/scenario.c src/util/fmt.c src/util/parse.c src/manoeuvre.c \
              src/telemetry.c ports/cortexm/startup.c ports/cortexm/semihost.c
 TEST_PART1 := battery drive_control fixedpoint hal harness induction_motor math telemetry
@@ -243,7 +243,7 @@ $$($(1)-$(2)_DIR)/uuvsim.elf: $$($(1)-$(2)_SRC_O) $$($(1)-$(2)_SIM_O) ldscripts/
 	    -Wl,-Map=$$(@:.elf=.map) -o $$@ $$(filter %.o,$$^) -lgcc
 
 -include $$(wildcard $$($(1)-$(2)_DIR)/obj/*/*.d $$($(1)-$(2)_DIR)/obj/*/*/*.d \
-    $$($(1)-$(2)_DIR)/obj/*/*/*/*.d $$($(1)-$(2)_DIR)/obj-part*/*.d)
+    $$($(1)-$(2)_DIR)/obj/*/*/*/*.d $$($(1)-$(2)_DIR)/obj/*/*/*/*/*.d $$($(1)-$(2)_DIR)/obj/*/*/*/*/*/*.d $$($(1)-$(2)_DIR)/obj-part*/*.d)
 FW_VARIANTS += $(1)-$(2)
 FW_IMAGES += $$(if $(6),$$(foreach p,$(6),$$($(1)-$(2)_DIR)/unit_tests_part$$(p).elf), \
     $$($(1)-$(2)_DIR)/unit_tests.elf)

@@ -38,7 +38,7 @@ $(FUZZ_DIR)/fuzz_%: $(FUZZ_DIR)/obj/tests/fuzz/fuzz_%.o $(FUZZ_LIB_O)
 # Kept after the link, so that a second make rebuilds nothing.
 .SECONDARY: $(FUZZ_LIB_O) $(foreach h,$(FUZZ_HARNESSES),$(FUZZ_DIR)/obj/tests/fuzz/fuzz_$(h).o)
 
--include $(wildcard $(FUZZ_DIR)/obj/*/*.d $(FUZZ_DIR)/obj/*/*/*.d $(FUZZ_DIR)/obj/*/*/*/*.d)
+-include $(wildcard $(FUZZ_DIR)/obj/*/*.d $(FUZZ_DIR)/obj/*/*/*.d $(FUZZ_DIR)/obj/*/*/*/*.d $(FUZZ_DIR)/obj/*/*/*/*/*.d $(FUZZ_DIR)/obj/*/*/*/*/*/*.d)
 
 fuzz-build: $(foreach h,$(FUZZ_HARNESSES),$(FUZZ_DIR)/fuzz_$(h))
 

@@ -8,7 +8,7 @@
  *
  * The step is drive_fast_tick()'s real-time step (fast_tick_plain() in
  * drive_segment_fixed.c and drive_segment_float.c), composed of the same
- * pieces (models/power_stage_fast.h, models/pwm_rt.h) in the same order,
+ * pieces (models/drive/inverter/power_stage_fast.h, models/drive/pwm/pwm_rt.h) in the same order,
  * here on the locals. It is a copy, not a shared function, so that the
  * interrupt's step keeps the code the compiler gives it on its own
  * (measured per target in docs/firmware.md); tests/unit/test_executive.c
@@ -19,8 +19,8 @@
 #include <stdint.h>
 
 #include "drive_segment.h"
-#include "models/power_stage_fast.h"
-#include "models/pwm_rt.h"
+#include "models/drive/inverter/power_stage_fast.h"
+#include "models/drive/pwm/pwm_rt.h"
 
 #if UUV_NUMERIC == UUV_NUMERIC_FIXED
 typedef power_stage_q plain_stage;

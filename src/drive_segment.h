@@ -53,13 +53,13 @@
 #include <stddef.h>
 #include <stdint.h>
 
-#include "models/drive_control.h"
-#include "models/induction_motor.h"
-#include "models/inverter_avg.h"
-#include "models/power_stage.h"
-#include "models/propeller.h"
-#include "models/pwm.h"
-#include "models/pwm_rt.h"
+#include "models/drive/control/drive_control.h"
+#include "models/drive/motor/induction_motor.h"
+#include "models/drive/inverter/inverter_avg.h"
+#include "models/drive/inverter/power_stage.h"
+#include "models/propeller/propeller.h"
+#include "models/drive/pwm/pwm.h"
+#include "models/drive/pwm/pwm_rt.h"
 #include "uuv_config.h"
 
 /* Inverter model (the paper's layered model). */

@@ -1,6 +1,6 @@
 /*
  * The drive segment of the fixed-point build (see drive_segment.h): every
- * signal per unit of the bases in models/drive_units.h, integer arithmetic
+ * signal per unit of the bases in models/drive/drive_units.h, integer arithmetic
  * only in the fast tick and the motor task. The slow exchange, once per
  * 100 ms, converts to SI in double.
  */
@@ -11,8 +11,8 @@
 #include <stddef.h>
 
 #include "math/umath.h"
-#include "models/drive_units.h"
-#include "models/power_stage_fast.h"
+#include "models/drive/drive_units.h"
+#include "models/drive/inverter/power_stage_fast.h"
 
 #define Q31_ONE 2147483648.0
 #define Q28_ONE 268435456.0

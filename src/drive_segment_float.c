@@ -11,7 +11,7 @@
 #include <stddef.h>
 
 #include "math/umath.h"
-#include "models/power_stage_fast.h"
+#include "models/drive/inverter/power_stage_fast.h"
 
 static const pwm_params pwm_sampled = {5000.0, PWM_EDGES_SAMPLED, 0u, 0u};
 static const pwm_params pwm_located = {5000.0, PWM_EDGES_INTERPOLATED, 0u, 0u};

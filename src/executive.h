@@ -51,9 +51,9 @@
 
 #include "drive_segment.h"
 #include "manoeuvre.h"
-#include "models/battery.h"
-#include "models/propeller.h"
-#include "models/vessel.h"
+#include "models/battery/battery.h"
+#include "models/propeller/propeller.h"
+#include "models/vessel/vessel.h"
 #include "scenario.h"
 
 typedef enum {

@@ -29,7 +29,7 @@
 #include <stddef.h>
 #include <stdint.h>
 
-#include "models/vessel.h"
+#include "models/vessel/vessel.h"
 
 /*
  * Capacity of a scenario's event list (24 bytes each). A build may set a

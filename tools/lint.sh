@@ -96,7 +96,7 @@ tidy_one() {
 }
 export TIDY_CHECKS TIDY_FLAGS
 {
-    ls src/*.c src/*/*.c | xargs -P "$jobs" -I{} sh -c \
+    find src -name "*.c" | sort | xargs -P "$jobs" -I{} sh -c \
         'clang-tidy --quiet -checks="$TIDY_CHECKS" {} -- $TIDY_FLAGS -DUUV_NUMERIC=1 2>/dev/null'
     tidy_one src/drive_segment_float.c 2
 } > "$out/clang-tidy.txt"

@@ -11,7 +11,7 @@
  *
  *   void drive_fast_kernel_v7m(drive_segment *d);
  *
- * One step (see src/models/pwm_rt.h, power_stage_fast.h and
+ * One step (see src/models/drive/pwm/pwm_rt.h, power_stage_fast.h and
  * power_stage_nodes.h for the arithmetic and its bounds):
  *   - modulator: carrier c, legs s_x = sign bit of c - r_x (r_c = -r_a - r_b);
  *   - inverter: v3 = hi(v_dc 0x55555555 + 2^31), u_x = n_x v3;

@@ -10,7 +10,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "models/vessel.h"
+#include "models/vessel/vessel.h"
 #include "executive.h"
 
 #define LINE_MAX_BYTES 8192

@@ -10,8 +10,8 @@
  *   gcc -std=c99 -O2 -Wall -Wextra -Wpedantic -Wconversion -Wdouble-promotion -Wshadow
  *       -Werror -ffp-contract=off -D_POSIX_C_SOURCE=200809L -Isrc
  *       -o build/bench_drive_control tests/host/bench_drive_control.c
- *       src/models/drive_control.c src/models/drive_control_params.c
- *       src/models/drive_control_q.c src/models/drive_control_f32.c
+ *       src/models/drive/control/drive_control.c src/models/drive/control/drive_control_params.c
+ *       src/models/drive/control/drive_control_q.c src/models/drive/control/drive_control_f32.c
  *       (every .c file of src/fixedpoint and of src/math) -lm
  */
 #include <math.h>
@@ -19,8 +19,8 @@
 #include <time.h>
 
 #include "fixedpoint/fixedpoint.h"
-#include "models/drive_control.h"
-#include "models/drive_units.h"
+#include "models/drive/control/drive_control.h"
+#include "models/drive/drive_units.h"
 
 #define N_REC 4096u  /* recorded frames (3.3 s: start, run, reversal) */
 #define N_REP 200u   /* replays of the record per measurement */

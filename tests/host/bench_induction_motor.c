@@ -8,15 +8,15 @@
  * Build (from the repository root):
  *   gcc -std=c99 -O2 -Wall -Wextra -Wpedantic -Wconversion -Wdouble-promotion -Wshadow \
  *       -Werror -ffp-contract=off -fno-builtin -D_POSIX_C_SOURCE=200809L -Isrc \
- *       tests/host/bench_induction_motor.c src/models/induction_motor*.c \
- *       src/models/propeller.c src/fixedpoint/fixedpoint.c -lm -o bench_induction_motor
+ *       tests/host/bench_induction_motor.c src/models/drive/motor/induction_motor*.c \
+ *       src/models/propeller/propeller.c src/fixedpoint/fixedpoint.c -lm -o bench_induction_motor
  */
 #include <math.h>
 #include <stdio.h>
 #include <time.h>
 
-#include "models/drive_units.h"
-#include "models/induction_motor.h"
+#include "models/drive/drive_units.h"
+#include "models/drive/motor/induction_motor.h"
 
 #define STEP_S 100e-6
 #define PERIOD_STEPS 197 /* about one period of 50.67 Hz at 10 kHz */

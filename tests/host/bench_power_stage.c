@@ -14,9 +14,9 @@
 #include <time.h>
 
 #include "fixedpoint/wavetable.h"
-#include "models/inverter_avg.h"
-#include "models/power_stage.h"
-#include "models/pwm.h"
+#include "models/drive/inverter/inverter_avg.h"
+#include "models/drive/inverter/power_stage.h"
+#include "models/drive/pwm/pwm.h"
 
 #define STEPS 2000000u
 #define FRAMES 100000u

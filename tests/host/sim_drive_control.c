@@ -1,7 +1,7 @@
 /*
  * Closed-loop check of the drive controller on the drive's actual machine:
  * both controller twins at 800 us against the double-precision induction
- * motor (src/models/induction_motor.h, 100 us, 15 kW set, propeller load and
+ * motor (src/models/drive/motor/induction_motor.h, 100 us, 15 kW set, propeller load and
  * inertia) fed by an ideal averaged inverter (no switching ripple, no LC
  * filter): the voltage vector m Vdc / 2 turning by the controller's phase
  * increment, averaged exactly over each motor step. The controller sees the
@@ -16,10 +16,10 @@
  *   gcc -std=c99 -O2 -Wall -Wextra -Wpedantic -Wconversion -Wdouble-promotion -Wshadow
  *       -Werror -ffp-contract=off -fno-builtin -D_POSIX_C_SOURCE=200809L -Isrc
  *       -o build/sim_drive_control tests/host/sim_drive_control.c
- *       src/models/drive_control.c src/models/drive_control_params.c
- *       src/models/drive_control_q.c src/models/drive_control_f32.c
- *       src/models/induction_motor_coef.c src/models/induction_motor_f64.c
- *       src/models/induction_motor_params.c src/models/propeller.c
+ *       src/models/drive/control/drive_control.c src/models/drive/control/drive_control_params.c
+ *       src/models/drive/control/drive_control_q.c src/models/drive/control/drive_control_f32.c
+ *       src/models/drive/motor/induction_motor_coef.c src/models/drive/motor/induction_motor_f64.c
+ *       src/models/drive/motor/induction_motor_params.c src/models/propeller/propeller.c
  *       (every .c file of src/fixedpoint and of src/math) -lm
  */
 #include <math.h>
@@ -27,10 +27,10 @@
 #include <stdio.h>
 
 #include "fixedpoint/fixedpoint.h"
-#include "models/drive_control.h"
-#include "models/drive_units.h"
-#include "models/induction_motor.h"
-#include "models/propeller.h"
+#include "models/drive/control/drive_control.h"
+#include "models/drive/drive_units.h"
+#include "models/drive/motor/induction_motor.h"
+#include "models/propeller/propeller.h"
 
 #define PI 3.14159265358979323846
 #define W_1500 (1500.0 * PI / 30.0)

@@ -1,6 +1,6 @@
 /*
  * The battery model against references computed here, independently of
- * src/models/battery.c: the published cell table itself, hand-written
+ * src/models/battery/battery.c: the published cell table itself, hand-written
  * Thevenin relations, closed-form solutions of the RC branch, and a
  * continuous-time simulation of the cell (RK4, SOC-dependent parameters
  * re-evaluated inside every stage, not frozen per frame as in the model).
@@ -8,7 +8,7 @@
 #include <stddef.h>
 
 #include "math/umath.h"
-#include "models/battery.h"
+#include "models/battery/battery.h"
 #include "ut.h"
 
 void suite_battery(void);

@@ -1,5 +1,5 @@
 /*
- * The drive controller (src/models/drive_control.h), both twins, against
+ * The drive controller (src/models/drive/control/drive_control.h), both twins, against
  * plants simulated here in double precision at a finer step:
  *   - a balanced three-phase R-L load fed by a voltage vector of amplitude
  *     m Vdc / 2 turning at the commanded frequency. In the frame of the
@@ -20,9 +20,9 @@
 #include "fixedpoint/fixedpoint.h"
 #include "fixedpoint/wavetable.h"
 #include "math/umath.h"
-#include "models/drive_control.h"
-#include "models/drive_units.h"
-#include "models/induction_motor.h"
+#include "models/drive/control/drive_control.h"
+#include "models/drive/drive_units.h"
+#include "models/drive/motor/induction_motor.h"
 #include "ut.h"
 
 void suite_drive_control(void);

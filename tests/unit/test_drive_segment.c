@@ -13,7 +13,7 @@
 
 #include "drive_segment.h"
 #include "math/umath.h"
-#include "models/battery.h"
+#include "models/battery/battery.h"
 #include "ut.h"
 
 void suite_drive_segment(void);

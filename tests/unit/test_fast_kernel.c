@@ -13,7 +13,7 @@
 #include <stdint.h>
 
 #include "drive_segment.h"
-#include "models/propeller.h"
+#include "models/propeller/propeller.h"
 #include "ut.h"
 
 #if defined(FW_FAST_KERNEL) && FW_FAST_KERNEL

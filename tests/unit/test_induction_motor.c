@@ -1,5 +1,5 @@
 /*
- * The induction motor (src/models/induction_motor.h), both twins in every
+ * The induction motor (src/models/drive/motor/induction_motor.h), both twins in every
  * build, against independent references:
  *   - the exact steady-state per-phase equivalent circuit (Rs, Xls, Xm, Xlr,
  *     Rr/s), computed here in double complex arithmetic, at locked speed;
@@ -17,9 +17,9 @@
 
 #include "fixedpoint/fixedpoint.h"
 #include "math/umath.h"
-#include "models/drive_units.h"
-#include "models/induction_motor.h"
-#include "models/propeller.h"
+#include "models/drive/drive_units.h"
+#include "models/drive/motor/induction_motor.h"
+#include "models/propeller/propeller.h"
 #include "ut.h"
 
 void suite_induction_motor(void);

@@ -11,7 +11,7 @@
 #include <stddef.h>
 
 #include "math/umath.h"
-#include "models/inverter_avg.h"
+#include "models/drive/inverter/inverter_avg.h"
 #include "ut.h"
 
 void suite_inverter_avg(void);

@@ -1,5 +1,5 @@
 /*
- * Properties of the power stage (src/models/power_stage.h, the pieces in
+ * Properties of the power stage (src/models/drive/inverter/power_stage.h, the pieces in
  * power_stage_nodes.h) and of the averaged inverter (inverter_avg.h), both
  * twins in every build:
  *   - the LC filter's companion model, driven by a sinusoidal source, against
@@ -16,13 +16,13 @@
  */
 #include <stddef.h>
 
-#include "models/battery.h"
-#include "models/inverter_avg.h"
-#include "models/power_stage.h"
-#include "models/power_stage_fast.h"
-#include "models/pwm_rt.h"
-#include "models/power_stage_nodes.h"
-#include "models/pwm.h"
+#include "models/battery/battery.h"
+#include "models/drive/inverter/inverter_avg.h"
+#include "models/drive/inverter/power_stage.h"
+#include "models/drive/inverter/power_stage_fast.h"
+#include "models/drive/pwm/pwm_rt.h"
+#include "models/drive/inverter/power_stage_nodes.h"
+#include "models/drive/pwm/pwm.h"
 #include "power_test_dft.h"
 #include "ut.h"
 

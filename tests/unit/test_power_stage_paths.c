@@ -9,7 +9,7 @@
  */
 #include <stddef.h>
 
-#include "models/power_stage.h"
+#include "models/drive/inverter/power_stage.h"
 #include "ut.h"
 
 void suite_power_stage_paths(void);

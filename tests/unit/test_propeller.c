@@ -7,7 +7,7 @@
 #include <stddef.h>
 
 #include "math/umath.h"
-#include "models/propeller.h"
+#include "models/propeller/propeller.h"
 #include "ut.h"
 
 void suite_propeller(void);

@@ -1,5 +1,5 @@
 /*
- * Properties of the sine-triangle modulator (src/models/pwm.h), both twins
+ * Properties of the sine-triangle modulator (src/models/drive/pwm/pwm.h), both twins
  * in every build: switching once on and once off per leg and carrier
  * period; the fundamental of the inverter phase voltage against m Vdc / 2;
  * the spectrum's first cluster at the carrier; reversal and standstill;
@@ -12,10 +12,10 @@
  */
 #include <stddef.h>
 
-#include "models/power_stage.h"
-#include "models/power_stage_nodes.h"
-#include "models/pwm.h"
-#include "models/pwm_rt.h"
+#include "models/drive/inverter/power_stage.h"
+#include "models/drive/inverter/power_stage_nodes.h"
+#include "models/drive/pwm/pwm.h"
+#include "models/drive/pwm/pwm_rt.h"
 #include "fixedpoint/wavetable.h"
 #include "power_test_dft.h"
 #include "ut.h"

@@ -11,8 +11,8 @@
 
 #include "fixedpoint/wavetable.h"
 #include "math/umath.h"
-#include "models/pwm.h"
-#include "models/pwm_rt.h"
+#include "models/drive/pwm/pwm.h"
+#include "models/drive/pwm/pwm_rt.h"
 #include "ut.h"
 
 void suite_pwm_paths(void);

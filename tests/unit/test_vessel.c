@@ -12,7 +12,7 @@
 #include <stdint.h>
 
 #include "math/umath.h"
-#include "models/vessel.h"
+#include "models/vessel/vessel.h"
 #include "ut.h"
 
 #include "test_vessel_data.h"

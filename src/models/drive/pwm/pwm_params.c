@@ -1,0 +1,13 @@
+/*
+ * Default parameters of the PWM modulator (declared in pwm.h). The 5 kHz
+ * carrier is the paper's (section 2); docs/drive_power.md explains the edge
+ * mode and the phase origins.
+ */
+#include "models/drive/pwm/pwm.h"
+
+const pwm_params pwm_params_default = {
+    .carrier_hz = 5000.0,
+    .edges = PWM_EDGES_INTERPOLATED,
+    .carrier_phase0 = 0u,
+    .ref_phase0 = 0u,
+};
