@@ -59,7 +59,7 @@ FORCE:
 define host_variant
 $(1)_DIR := $(BUILD)/$(1)
 $(1)_CFLAGS := $(COMMON) $(4) -DUUV_NUMERIC=$(NUM_$(3)) -D_POSIX_C_SOURCE=200809L $(INC) \
-    -Iports/linux
+    -Iports/linux $(HOST_SQRT)
 $(1)_SRC_O := $$(patsubst %.c,$$($(1)_DIR)/obj/%.o,$(SRC_C) $(LINUX_PORT_C))
 $(1)_TEST_O := $$(patsubst %.c,$$($(1)_DIR)/obj/%.o,$(TEST_C))
 $(1)_UUVSIM_O := $$(patsubst %.c,$$($(1)_DIR)/obj/%.o,$(UUVSIM_C))
@@ -110,6 +110,9 @@ endef
 # beyond x86-64's 16 registers; without it the desk runs 8 % (float) to
 # 24 % (fixed) faster (docs/multirate.md, "Speed").
 HOST_OPT := -O3 -g
+# x86-64 and AArch64 have IEEE square-root instructions in both precisions
+# (src/uuv_config.h, src/math/sqrt.c): the same bits as the integer version.
+HOST_SQRT := -DUUV_HW_SQRT_F64=1 -DUUV_HW_SQRT_F32=1 -fno-math-errno
 DESK_RUN_GCC_FLAGS := -fno-tree-pre
 SAN_FLAGS := -O1 -g -fsanitize=address,undefined -fno-sanitize-recover=all -fno-omit-frame-pointer
 
@@ -250,9 +253,13 @@ FW_IMAGES += $$(if $(6),$$(foreach p,$(6),$$($(1)-$(2)_DIR)/unit_tests_part$$(p)
 FW_SIMS += $$($(1)-$(2)_DIR)/uuvsim.elf
 endef
 
+# The square-root instructions each core has (src/uuv_config.h): VSQRT.F32
+# on the M4F, VSQRT.F32 and .F64 on the M7 (FPv5-D16), none on the M3.
 CPU_M3 := -mcpu=cortex-m3 -mthumb -mfloat-abi=soft
-CPU_M4F := -mcpu=cortex-m4 -mthumb -mfpu=fpv4-sp-d16 -mfloat-abi=hard
-CPU_M7 := -mcpu=cortex-m7 -mthumb -mfpu=fpv5-d16 -mfloat-abi=hard
+CPU_M4F := -mcpu=cortex-m4 -mthumb -mfpu=fpv4-sp-d16 -mfloat-abi=hard \
+           -DUUV_HW_SQRT_F32=1 -fno-math-errno
+CPU_M7 := -mcpu=cortex-m7 -mthumb -mfpu=fpv5-d16 -mfloat-abi=hard \
+          -DUUV_HW_SQRT_F64=1 -DUUV_HW_SQRT_F32=1 -fno-math-errno
 
 $(eval $(call fw_variant,mps2-an385,fixed,$(CPU_M3),0,ports/cortexm/board_mps2.c,,-Os))
 $(eval $(call fw_variant,mps2-an386,fixed,$(CPU_M4F),1,ports/cortexm/board_mps2.c,))

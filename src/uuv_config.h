@@ -33,6 +33,25 @@
 #error "the float build needs a target with a single-precision FPU; use UUV_NUMERIC_FIXED"
 #endif
 
+/*
+ * Whether the target has an IEEE 754 square-root instruction in double
+ * (UUV_HW_SQRT_F64) and in single precision (UUV_HW_SQRT_F32). The port
+ * sets them with -fno-math-errno (the instruction then stands alone; see
+ * src/math/sqrt.c): the Linux port both, the Cortex-M7 both (FPv5-D16),
+ * the Cortex-M4F single only, the Cortex-M3 neither. The bits are the same
+ * either way; only the cost differs.
+ */
+#ifndef UUV_HW_SQRT_F64
+#define UUV_HW_SQRT_F64 0
+#endif
+#ifndef UUV_HW_SQRT_F32
+#define UUV_HW_SQRT_F32 0
+#endif
+
+#if (UUV_HW_SQRT_F32 != 0) && (UUV_TARGET_HAS_FPU == 0)
+#error "UUV_HW_SQRT_F32 needs a target with a single-precision FPU"
+#endif
+
 /* Name of the numeric build, as reports print it. */
 #if UUV_NUMERIC == UUV_NUMERIC_FIXED
 #define UUV_NUMERIC_NAME "fixed"

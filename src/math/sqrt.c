@@ -34,6 +34,7 @@
  * units low over all 2^31 of its arguments), so they end by their test.
  */
 #include "math/math_private.h"
+#include "uuv_config.h"
 
 /* 1 / sqrt(u) at the middle of [k / 16, (k + 1) / 16), Q16, for k = 16 ... 63. */
 static const uint16_t sqrt_seed_q16[48] = {
@@ -83,7 +84,7 @@ static uint64_t sqrt_root_u64(uint64_t x, uint32_t *z) {
     return r;
 }
 
-uint64_t math_isqrt_u64(uint64_t x) {
+uint64_t math_isqrt_u64_soft(uint64_t x) {
     if (x == 0u) {
         return 0u;
     }
@@ -126,7 +127,7 @@ uint64_t math_isqrt_u64(uint64_t x) {
     return q;
 }
 
-double math_sqrt_f64(double x) {
+double math_sqrt_f64_soft(double x) {
     uint64_t u = math_bits_f64(x);
     uint64_t mag = u & 0x7fffffffffffffffu;
     if (mag == 0u) {
@@ -181,7 +182,7 @@ double math_sqrt_f64(double x) {
     return math_from_bits_f64(((uint64_t)(ex / 2 + 1022) << 52) + sig);
 }
 
-float math_sqrt_f32(float x) {
+float math_sqrt_f32_soft(float x) {
     uint32_t u = math_bits_f32(x);
     uint32_t mag = u & 0x7fffffffu;
     if (mag == 0u) {
@@ -225,4 +226,53 @@ float math_sqrt_f32(float x) {
     }
     uint32_t sig = (uint32_t)((q >> 1) + (q & 1u));
     return math_from_bits_f32(((uint32_t)(ex / 2 + 126) << 23) + sig);
+}
+
+/*
+ * The entry points: the port's square-root instruction where uuv_config.h
+ * says it has one (every IEEE 754 square-root instruction is correctly
+ * rounded, so it gives the bits of the integer version above for every
+ * non-negative input; test_math holds them together), the integer version
+ * otherwise. The instruction needs -fno-math-errno, which the port passes
+ * with the option: without it the compiler would call a libm sqrt on the
+ * error path, and the freestanding link would fail.
+ */
+double math_sqrt_f64(double x) {
+#if UUV_HW_SQRT_F64
+    return __builtin_sqrt(x);
+#else
+    return math_sqrt_f64_soft(x);
+#endif
+}
+
+float math_sqrt_f32(float x) {
+#if UUV_HW_SQRT_F32
+    return __builtin_sqrtf(x);
+#else
+    return math_sqrt_f32_soft(x);
+#endif
+}
+
+/*
+ * With a double-precision square root: x rounded to double is within 2^11
+ * of x, so the root of it is within one unit of floor(sqrt(x)); the exact
+ * integer comparisons below settle that unit (the squares below 2^64: the
+ * root is capped at 2^32 - 1).
+ */
+uint64_t math_isqrt_u64(uint64_t x) {
+#if UUV_HW_SQRT_F64
+    uint64_t q = (uint64_t)__builtin_sqrt((double)x);
+    if (q > 0xffffffffu) {
+        q = 0xffffffffu;
+    }
+    while (q * q > x) {
+        q--;
+    }
+    while (q < 0xffffffffu && (q + 1u) * (q + 1u) <= x) {
+        q++;
+    }
+    return q;
+#else
+    return math_isqrt_u64_soft(x);
+#endif
 }

@@ -183,8 +183,17 @@ float math_fmod_f32(float x, float y);
 double math_sqrt_f64(double x);
 float math_sqrt_f32(float x);
 
-/* floor(sqrt(x)) for every 64-bit x, exact; integer arithmetic only. */
+/* floor(sqrt(x)) for every 64-bit x, exact. */
 uint64_t math_isqrt_u64(uint64_t x);
+
+/*
+ * The same three in integer arithmetic only, always built: the entry points
+ * above use the target's square-root instruction instead where the port
+ * sets UUV_HW_SQRT_F64 / UUV_HW_SQRT_F32 (uuv_config.h), with the same bits.
+ */
+double math_sqrt_f64_soft(double x);
+float math_sqrt_f32_soft(float x);
+uint64_t math_isqrt_u64_soft(uint64_t x);
 
 /*
  * Trigonometric functions of an angle in radians. Accurate for every finite

@@ -193,13 +193,58 @@ static void test_sqrt(void) {
     UT_TEST("sqrt: special values (C99 Annex F): +-0, -x, +inf, NaN");
     UT_CHECK(same_f64(math_sqrt_f64(-0.0), -0.0));
     UT_CHECK(same_f64(math_sqrt_f64(0.0), 0.0));
-    UT_CHECK(canonical_nan_f64(math_sqrt_f64(-1.0)));
-    UT_CHECK(canonical_nan_f64(math_sqrt_f64(-math_inf_f64())));
-    UT_CHECK(canonical_nan_f64(math_sqrt_f64(-math_nan_f64())));
+    UT_CHECK(canonical_nan_f64(math_sqrt_f64_soft(-1.0)));
+    UT_CHECK(canonical_nan_f64(math_sqrt_f64_soft(-math_inf_f64())));
+    UT_CHECK(canonical_nan_f64(math_sqrt_f64_soft(-math_nan_f64())));
+    UT_CHECK(math_isnan_f64(math_sqrt_f64(-1.0)) && math_isnan_f64(math_sqrt_f64(-math_inf_f64())));
     UT_CHECK(math_sqrt_f64(math_inf_f64()) == math_inf_f64());
     UT_CHECK(same_f32(math_sqrt_f32(-0.0f), -0.0f));
-    UT_CHECK(canonical_nan_f32(math_sqrt_f32(-0x1p-149f)));
+    UT_CHECK(canonical_nan_f32(math_sqrt_f32_soft(-0x1p-149f)));
+    UT_CHECK(math_isnan_f32(math_sqrt_f32(-0x1p-149f)));
     UT_CHECK(math_sqrt_f32(math_inf_f32()) == math_inf_f32());
+
+    /*
+     * Where the port has a square-root instruction (UUV_HW_SQRT_F64/F32,
+     * src/uuv_config.h), the entry points use it; elsewhere they are the
+     * integer version and these checks compare it with itself. A negative
+     * input gives a NaN either way (the instruction's default NaN may
+     * carry another sign), so only non-negative inputs are compared by bits.
+     */
+    UT_TEST("sqrt: the entry points give the integer version's bits for every kind of "
+            "non-negative input: the vessel's and controller's ranges, subnormals, the "
+            "extremes, pseudo-random bit patterns over every exponent");
+    static const double edge64[] = {0.0, 0x1p-1074, 0x1.ffffffffffffep-1023, 0x1p-1022, 0.5, 1.0,
+                                    1.5, 2.0, 1e-6, 0.36, 2.25e4, 0x1.fffffffffffffp+1023};
+    ok = true;
+    for (unsigned i = 0u; i < sizeof edge64 / sizeof edge64[0]; i++) {
+        ok = ok && same_f64(math_sqrt_f64(edge64[i]), math_sqrt_f64_soft(edge64[i])) &&
+             same_f32(math_sqrt_f32((float)edge64[i]), math_sqrt_f32_soft((float)edge64[i]));
+    }
+    for (int i = 0; i < 20000; i++) {
+        uint64_t v = lcg_next(&state);
+        double x = math_from_bits_f64((v >> 1) % 0x7ff0000000000000u); /* finite, >= 0 */
+        float xf = math_from_bits_f32((uint32_t)(v >> 33) % 0x7f800000u);
+        double y = (double)(v >> 40) * 1e-4; /* 0 ... 1.7e8: flows, speeds, currents */
+        ok = ok && same_f64(math_sqrt_f64(x), math_sqrt_f64_soft(x)) &&
+             same_f64(math_sqrt_f64(y), math_sqrt_f64_soft(y)) &&
+             same_f32(math_sqrt_f32(xf), math_sqrt_f32_soft(xf)) &&
+             same_f32(math_sqrt_f32((float)y), math_sqrt_f32_soft((float)y));
+    }
+    UT_CHECK(ok);
+
+    UT_TEST("isqrt_u64: the entry point equals the integer version at the edges and on "
+            "pseudo-random squares and neighbours of every width");
+    ok = true;
+    for (unsigned i = 0u; i < sizeof edges / sizeof edges[0]; i++) {
+        ok = ok && math_isqrt_u64(edges[i]) == math_isqrt_u64_soft(edges[i]);
+    }
+    for (int i = 0; i < 20000; i++) {
+        uint64_t v = lcg_next(&state);
+        uint64_t k = v >> (32 + (i % 32));
+        uint64_t x = (i % 3 == 0) ? k * k - 1u : ((i % 3 == 1) ? k * k : v >> (i % 64));
+        ok = ok && math_isqrt_u64(x) == math_isqrt_u64_soft(x);
+    }
+    UT_CHECK(ok);
 }
 
 /* ---- trigonometric functions ---------------------------------------------- */
