@@ -347,6 +347,7 @@ bench: $(BUILD)/linux-fixed/bench $(BUILD)/linux-float/bench
 # The firmware simulation: qemu-run, qemu-bench and its part of make test.
 include mk/firmware.mk
 include mk/hardening.mk
+include mk/fmu.mk
 
 clean:
 	rm -rf $(BUILD)

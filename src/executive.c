@@ -90,6 +90,19 @@ static void apply_event(exec *e, const scenario_event *ev) {
     }
 }
 
+void exec_command(exec *e, scenario_command c, double value) {
+    if (c < SCN_FIRST_FAULT) {
+        scenario_event ev = {0};
+        ev.t_s = (double)e->frame * e->slow_s;
+        ev.value = value;
+        ev.command = (uint16_t)c;
+        apply_event(e, &ev);
+        if (c == SCN_N_RPM) {
+            e->speed_rpm = value; /* the medium task's command in force (speed_command_at) */
+        }
+    }
+}
+
 /* The zig-zag rule, decided at the start of each slow step from the heading. */
 static void zigzag_rule(exec *e, double t) {
     const scenario_zigzag *z = &e->scn->zigzag;

@@ -254,6 +254,18 @@ void exec_desk_step(exec *e);
  */
 uint32_t exec_desk_run(exec *e, uint32_t max_ticks);
 
+/*
+ * A command given between slow steps, as a scenario event at the slow
+ * boundary just reached would have been: a co-simulation master's input
+ * at a communication point (ports/fmu). Call it after the boundary's slow
+ * step and before the controller task released with it (exec_control_tick())
+ * and the next fast tick: the controller then takes a shaft speed command
+ * at the boundary, and the vessel the fins and buoyancy over the next slow
+ * frame, exactly as from a scenario event at that time. Fault commands go
+ * through the scenario only; this takes c < SCN_FIRST_FAULT.
+ */
+void exec_command(exec *e, scenario_command c, double value);
+
 /* Takes the telemetry record made by the last slow step, if any. */
 bool exec_report_take(exec *e, exec_frame *out);
 

@@ -69,6 +69,10 @@ for v in linux-fixed linux-float; do
     run "host $v soak, 600 s (make soak: 3600 s)" pass sh tests/host/test_soak.sh \
         "$BUILD/$v/uuvsim" 600
 done
+for n in fixed float; do
+    run "host fmu-$n: FMU through a test master" pass sh tests/host/test_fmu.sh \
+        "$BUILD/fmu-$n/uuvsim.fmu" "$BUILD/linux-$n/uuvsim" "$BUILD/tools/fmu_import"
+done
 run "host make run's plots (gnuplot)" pass sh tests/host/test_plots.sh "$BUILD/linux-float/uuvsim"
 run "host math vs libm" pass "$BUILD/tools/test_math_libm"
 run "host check_tables (exhaustive)" pass "$BUILD/tools/check_tables"
