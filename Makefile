@@ -5,6 +5,7 @@
 #   make test          installs missing tools, builds everything, runs every test
 #   make check-tables  exhaustive error of the sine and triangle tables
 #   make run           the main job (see README.md)
+#   make view          out/mission.html, the 3-D view of make run's mission
 #
 # The numeric build and the port are chosen here, by -D options and include
 # paths; src/ never tests for a platform.
@@ -39,7 +40,8 @@ SRC_H := $(sort $(shell find src -name "*.h"))
 TEST_C := tests/harness/ut.c tests/harness/runner.c $(sort $(wildcard tests/unit/test_*.c))
 SUITES := $(patsubst tests/unit/test_%.c,%,$(sort $(wildcard tests/unit/test_*.c)))
 LINUX_PORT_C := $(sort $(wildcard ports/linux/hal_*.c))
-UUVSIM_C := ports/linux/uuvsim.c ports/linux/cli.c ports/linux/csv_out.c ports/linux/derivs.c
+UUVSIM_C := ports/linux/uuvsim.c ports/linux/cli.c ports/linux/csv_out.c ports/linux/derivs.c \
+            ports/linux/view.c
 CORTEXM_PORT_C := ports/cortexm/startup.c ports/cortexm/hal_cortexm.c \
                   ports/cortexm/semihost.c ports/cortexm/libc_min.c
 
@@ -49,6 +51,13 @@ $(BUILD)/gen/suites.inc: FORCE
 	@printf '%s\n' $(foreach s,$(SUITES),'UT_SUITE($(s))') > $@.tmp
 	@cmp -s $@.tmp $@ || mv $@.tmp $@
 	@rm -f $@.tmp
+
+# The page of uuvsim view (ports/linux/mission.html) as C strings, one per
+# line: backslashes, quotes and '?' (no trigraphs) escaped.
+$(BUILD)/gen/mission_html.inc: ports/linux/mission.html
+	@mkdir -p $(@D)
+	sed -e 's/[\\"?]/\\&/g' -e 's/^/"/' -e 's/$$/\\n",/' $< > $@.tmp
+	mv $@.tmp $@
 
 .PHONY: FORCE
 FORCE:
@@ -87,6 +96,7 @@ $$($(1)_DIR)/obj-mustfail/test_harness.o: tests/unit/test_harness.c $$($(1)_DIR)
 	$(2) $$($(1)_CFLAGS) -DUT_PROVE_FAILURE -c $$< -o $$@
 
 $$($(1)_DIR)/obj/tests/harness/runner.o: $(BUILD)/gen/suites.inc
+$$($(1)_DIR)/obj/ports/linux/view.o: $(BUILD)/gen/mission_html.inc
 
 $$($(1)_DIR)/unit_tests: $$($(1)_SRC_O) $$($(1)_TEST_O)
 	$(2) $(5) -o $$@ $$^ -lm
@@ -295,7 +305,7 @@ HOST_TOOLS := $(BUILD)/tools/check_tables $(BUILD)/tools/gen_wavetables \
 
 # ---- Top-level targets ----------------------------------------------------
 
-.PHONY: all firmware host-all tools test test-run check-tables run bench clean deps
+.PHONY: all firmware host-all tools test test-run check-tables run view bench clean deps
 
 all: $(foreach v,linux-fixed linux-float,$(BUILD)/$(v)/unit_tests $(BUILD)/$(v)/uuvsim)
 
@@ -335,6 +345,14 @@ run: $(BUILD)/linux-float/uuvsim
 	else \
 	    echo "gnuplot is missing: install it (apt-get install gnuplot-nox) for the plots"; \
 	fi
+
+# The 3-D view of make run's mission: out/mission.html (uuvsim view), one
+# page that opens from file:// (three.js from libjs-three, installed here
+# when missing, as make test installs its tools).
+view: $(BUILD)/linux-float/uuvsim
+	@sh tools/ensure-deps.sh view
+	@test -f out/telemetry.csv || { echo "make view: no out/telemetry.csv: run make run first" >&2; exit 2; }
+	$(BUILD)/linux-float/uuvsim view out
 
 # The accuracy/speed-up study of both builds, in build/bench.json.
 bench: $(BUILD)/linux-fixed/bench $(BUILD)/linux-float/bench

@@ -74,6 +74,8 @@ for n in fixed float; do
         "$BUILD/fmu-$n/uuvsim.fmu" "$BUILD/linux-$n/uuvsim" "$BUILD/tools/fmu_import"
 done
 run "host make run's plots (gnuplot)" pass sh tests/host/test_plots.sh "$BUILD/linux-float/uuvsim"
+run "host uuvsim view, page in Chromium" pass sh tests/host/test_view.sh \
+    "$BUILD/linux-float/uuvsim"
 run "host math vs libm" pass "$BUILD/tools/test_math_libm"
 run "host check_tables (exhaustive)" pass "$BUILD/tools/check_tables"
 run "host wavetable_data.c = generator" pass "$BUILD/tools/gen_wavetables" --check \

@@ -13,6 +13,7 @@
 const char cli_usage[] =
     "usage: uuvsim [options] --scenario FILE\n"
     "       uuvsim derivs FILE.csv\n"
+    "       uuvsim view RUN_DIR\n"
     "\n"
     "Simulates the vehicle on a scenario and prints a summary.\n"
     "\n"
@@ -51,7 +52,11 @@ const char cli_usage[] =
     "\n"
     "derivs FILE.csv: reads commands and states in the layout of the reference\n"
     "derivative vectors and prints the same layout with the derivatives of the\n"
-    "vessel model (MSS propulsion, actuator lag).\n";
+    "vessel model (MSS propulsion, actuator lag).\n"
+    "\n"
+    "view RUN_DIR: writes RUN_DIR/mission.html, the run of RUN_DIR/telemetry.csv\n"
+    "(and summary.json) in 3-D with its plots, one page that opens from file://\n"
+    "(three.js from libjs-three; UUVSIM_THREE_JS names another copy).\n";
 
 static bool fail(char *err, size_t len, const char *format, ...)
     __attribute__((format(printf, 3, 4)));
@@ -266,6 +271,14 @@ bool cli_parse(int argc, char **argv, cli_options *o, char *err, size_t err_len)
         }
         o->action = CLI_DERIVS;
         o->derivs_path = argv[2];
+        return true;
+    }
+    if (argc >= 2 && strcmp(argv[1], "view") == 0) {
+        if (argc != 3 || argv[2][0] == '\0') {
+            return fail(err, err_len, "view: expected exactly one folder, the run's (such as out)");
+        }
+        o->action = CLI_VIEW;
+        o->view_dir = argv[2];
         return true;
     }
     for (int i = 1; i < argc; i++) {

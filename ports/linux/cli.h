@@ -11,7 +11,7 @@
 
 #include "executive.h"
 
-typedef enum { CLI_RUN, CLI_DERIVS, CLI_HELP, CLI_VERSION } cli_action;
+typedef enum { CLI_RUN, CLI_DERIVS, CLI_VIEW, CLI_HELP, CLI_VERSION } cli_action;
 
 typedef struct {
     cli_action action;
@@ -20,6 +20,7 @@ typedef struct {
     const char *trace_path;     /* --trace */
     const char *summary_path;   /* --summary: the JSON summary, to a file */
     const char *derivs_path;    /* derivs FILE */
+    const char *view_dir;       /* view RUN_DIR */
     double trace_from_s;        /* --trace-from */
     double trace_to_s;          /* --trace-to */
     exec_config exec;           /* plant, laws, inverter, couplings, rates, duration */

@@ -45,6 +45,9 @@ void out_abort(out_file *o) {
     }
 }
 
+const char *const out_trip_names[OUT_TRIP_NAMES] = {"none", "leg short", "under-voltage",
+                                                    "phase loss"};
+
 static const char *const drive_columns[] = {"te_nm", "i_rms_a", "v_dc", "i_batt_a", "soc",
                                             "m_index", "f_hz", "faults", "trip"};
 

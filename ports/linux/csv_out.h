@@ -34,6 +34,10 @@ bool out_close(out_file *o);
 /* Abandons the file: removes the partial output. */
 void out_abort(out_file *o);
 
+/* The protection's reasons, by the telemetry's trip value (drive_trip). */
+#define OUT_TRIP_NAMES 4u
+extern const char *const out_trip_names[OUT_TRIP_NAMES];
+
 void csv_header(FILE *f, bool full_plant);
 void csv_row(FILE *f, const exec_frame *r, bool full_plant);
 

@@ -22,6 +22,7 @@
 #define MAX_SCENARIO_BYTES (1u << 20)
 
 int uuvsim_derivs(const char *path); /* derivs.c */
+int uuvsim_view(const char *dir);    /* view.c */
 
 static double wall_seconds(void) {
     struct timespec ts;
@@ -71,8 +72,6 @@ static const char *const law_names[] = {"mss", "paper"};
 static const char *const inverter_names[] = {"switching", "averaged", "event"};
 static const char *const down_names[] = {"zoh", "foh", "deriv", "stagger"};
 static const char *const up_names[] = {"avg", "filter", "sample"};
-static const char *const trip_names[] = {"none", "leg short", "under-voltage", "phase loss"};
-#define TRIP_NAMES (sizeof trip_names / sizeof trip_names[0])
 
 /*
  * The energy audit (--energy-audit): the battery's energy at its terminals
@@ -128,7 +127,8 @@ static void print_json(FILE *f_out, const run_result *r) {
         }
     }
     fprintf(f_out, "],\n  \"protection\": {\"tripped\": %s, \"reason\": \"%s\"",
-            f->trip != 0u ? "true" : "false", trip_names[f->trip < TRIP_NAMES ? f->trip : 0u]);
+            f->trip != 0u ? "true" : "false",
+            out_trip_names[f->trip < OUT_TRIP_NAMES ? f->trip : 0u]);
     if (e->trip_t_s >= 0.0) {
         fprintf(f_out, ", \"at_s\": %.6g", e->trip_t_s);
     }
@@ -199,7 +199,8 @@ static void print_text(const run_result *r) {
                e->count.e_batt_j / 3600.0, e->bat.soc, f->v_dc_v);
         if (e->fault_mask != 0u || f->trip != 0u) {
             printf("faults injected: 0x%x; protection: %s\n", (unsigned)e->fault_mask,
-                   f->trip != 0u ? trip_names[f->trip < TRIP_NAMES ? f->trip : 0u] : "not tripped");
+                   f->trip != 0u ? out_trip_names[f->trip < OUT_TRIP_NAMES ? f->trip : 0u]
+                                 : "not tripped");
         }
     }
     /* The state psi is unwrapped (it counts whole turns); the line gives the
@@ -393,6 +394,8 @@ int main(int argc, char **argv) {
         return 0;
     case CLI_DERIVS:
         return uuvsim_derivs(o.derivs_path);
+    case CLI_VIEW:
+        return uuvsim_view(o.view_dir);
     case CLI_RUN:
         break;
     }
