@@ -31,8 +31,9 @@ static const char *const template_lines[] = {
 };
 
 #define THREE_DEFAULT "/usr/share/javascript/three/three.min.js"
-#define FILE_MAX_BYTES (1024u * 1024u * 1024u) /* 1 GiB: about 60 h of telemetry */
-#define SUMMARY_MAX_BYTES (1024u * 1024u)
+#define FILE_MAX_BYTES ((size_t)1 << 30)   /* 1 GiB: about 60 h of telemetry */
+#define SUMMARY_MAX_BYTES ((size_t)1 << 20)
+#define THREE_MAX_BYTES ((size_t)64 << 20)
 #define PATH_BYTES 4096
 
 /* The columns the page cannot do without; the drive's (v_dc, soc, ...) are optional. */
@@ -373,7 +374,7 @@ int uuvsim_view(const char *dir) {
             return 2;
         }
     }
-    if (!read_text(three_path, 64u * 1024u * 1024u, &three, &why)) {
+    if (!read_text(three_path, THREE_MAX_BYTES, &three, &why)) {
         fprintf(stderr, "uuvsim: view: %s: %s (three.js: install it with "
                 "'apt-get install libjs-three', or name the file in UUVSIM_THREE_JS)\n",
                 three_path, why);
