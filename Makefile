@@ -172,7 +172,7 @@ FW_SIM_C := ports/cortexm/fw_main.c
 # contraction at any level).
 FW_SIZE_C := $(wildcard src/models/vessel/*.c src/models/battery/*.c src/math/*_f64.c) \
              src/math/rem_pio2.c src/scenario.c src/util/fmt.c src/util/parse.c src/manoeuvre.c \
-             src/telemetry.c ports/cortexm/startup.c ports/cortexm/semihost.c
+             src/autopilot.c              src/telemetry.c ports/cortexm/startup.c ports/cortexm/semihost.c
 TEST_PART1 := battery drive_control fixedpoint hal harness induction_motor math telemetry
 TEST_PART2 := $(filter-out $(TEST_PART1),$(SUITES))
 

@@ -80,12 +80,27 @@ static void apply_event(exec *e, const scenario_event *ev) {
         return; /* a jammed fin ignores its commands */
     }
     switch ((scenario_command)ev->command) {
-    case SCN_RUDDER: c->rudder_rad = ev->value; break;
-    case SCN_STERN: c->stern_rad = ev->value; break;
+    /* A manual rudder or stern command takes that axis from its autopilot. */
+    case SCN_RUDDER:
+        c->rudder_rad = ev->value;
+        e->ap.heading_on = false;
+        break;
+    case SCN_STERN:
+        c->stern_rad = ev->value;
+        e->ap.depth_on = false;
+        break;
     case SCN_BOW_PORT: c->bow_port_rad = ev->value; break;
     case SCN_BOW_STBD: c->bow_stbd_rad = ev->value; break;
     case SCN_N_RPM: c->n_rpm = ev->value; break;
     case SCN_BUOYANCY: c->delta_b_n = ev->value; break;
+    case SCN_HEADING: autopilot_set_heading(&e->ap, ev->value); break;
+    case SCN_DEPTH: autopilot_set_depth(&e->ap, ev->value); break;
+    case SCN_AUTOPILOT:
+        /* Both off, the fins they drove amidships (a jammed fin stays). */
+        e->ap.heading_on = e->ap.depth_on = false;
+        c->rudder_rad = e->fin_jammed[0] ? c->rudder_rad : 0.0;
+        c->stern_rad = e->fin_jammed[1] ? c->stern_rad : 0.0;
+        break;
     default: break;
     }
 }
@@ -115,6 +130,7 @@ static void zigzag_rule(exec *e, double t) {
         return;
     }
     double psi = e->x[VESSEL_PSI_RAD];
+    e->ap.heading_on = false; /* the zig-zag drives the rudder */
     if (e->zz_rudder == 0.0) {
         e->zz_psi0 = psi;
         e->zz_rudder = z->rudder_rad;
@@ -136,6 +152,12 @@ static void apply_commands(exec *e, double t) {
         e->next_event++;
     }
     zigzag_rule(e, t);
+    /* The autopilots, on the fins that are free (a jammed fin holds). */
+    double rudder = e->cmd.rudder_rad;
+    double stern = e->cmd.stern_rad;
+    autopilot_step(&e->ap, e->x, e->report_s, &rudder, &stern);
+    e->cmd.rudder_rad = e->fin_jammed[0] ? e->cmd.rudder_rad : rudder;
+    e->cmd.stern_rad = e->fin_jammed[1] ? e->cmd.stern_rad : stern;
 }
 
 /*
@@ -271,6 +293,14 @@ static const char *unmodelled(const exec_config *cfg, uint16_t command) {
 }
 
 bool exec_check_scenario(const exec_config *cfg, const scenario *scn, scenario_error *err) {
+    if (cfg->plant == EXEC_PLANT_FULL && scn->init[VESSEL_N_RPM] != 0.0) {
+        (void)fmt_format(err->field, sizeof err->field, "n_rpm");
+        err->line = scn->init_rpm_line;
+        (void)fmt_format(err->message, sizeof err->message,
+                         "the full plant starts its motor at rest: command the speed with "
+                         "'at 0 n_rpm=...' (or use --plant vessel)");
+        return false;
+    }
     for (size_t k = 0; k < scn->n_events; k++) {
         const scenario_event *ev = &scn->events[k];
         const char *why = unmodelled(cfg, ev->command);
@@ -309,6 +339,7 @@ exec_status exec_init(exec *e, const exec_config *cfg, const scenario *scn) {
     vessel_config_default(&vc);
     vc.propulsion = cfg->propulsion;
     vc.shaft = (cfg->plant == EXEC_PLANT_FULL) ? VESSEL_SHAFT_INPUT : VESSEL_SHAFT_LAG;
+    vc.free_surface = !cfg->deep_water;
     vc.step_s = e->slow_s;
     if (vessel_init(&e->vessel, &vc) != VESSEL_OK) {
         return EXEC_ERR_MODEL;
@@ -316,6 +347,7 @@ exec_status exec_init(exec *e, const exec_config *cfg, const scenario *scn) {
     for (int i = 0; i < VESSEL_NSTATES; i++) {
         e->x[i] = scn->init[i];
     }
+    autopilot_init(&e->ap);
     manoeuvre_init(&e->man, scn->zigzag.enabled, scn->zigzag.heading_rad, scn->zigzag.start_s);
     apply_commands(e, 0.0);
     if (cfg->plant == EXEC_PLANT_FULL) {
@@ -611,7 +643,8 @@ void exec_slow_step(exec *e) {
         double speed2 = x[VESSEL_U_MPS] * x[VESSEL_U_MPS] + x[VESSEL_V_MPS] * x[VESSEL_V_MPS] +
                         x[VESSEL_W_MPS] * x[VESSEL_W_MPS];
         manoeuvre_update(&e->man, t, x[VESSEL_X_M], x[VESSEL_Y_M], x[VESSEL_PSI_RAD],
-                         math_sqrt_f64(speed2), x[VESSEL_R_RADPS], e->cmd.rudder_rad);
+                         math_sqrt_f64(speed2), x[VESSEL_R_RADPS],
+                         e->ap.heading_on ? 0.0 : e->cmd.rudder_rad); /* manual turns only */
     }
     (void)vessel_step(&e->vessel, e->x, &e->cmd);
     e->frame++;

@@ -49,6 +49,7 @@
 #include <stdbool.h>
 #include <stdint.h>
 
+#include "autopilot.h"
 #include "drive_segment.h"
 #include "manoeuvre.h"
 #include "models/battery/battery.h"
@@ -70,6 +71,7 @@ typedef struct {
     coupling_down down;
     coupling_up up;
     bool single_rate;
+    bool deep_water;       /* no free surface: the reference vessel of tests/vectors */
     bool energy_audit;     /* count the drive's losses (exec_counters; the general fast path) */
     double duration_s;     /* [s]; 0: the scenario's */
     double soc0;           /* [-] initial state of charge */
@@ -154,6 +156,7 @@ typedef struct {
     double pl_sq[3], pl_t;    /* phase-loss window: [A^2 s] per phase, [s] its length */
     uint32_t pl_windows;      /* windows running that showed a phase loss */
     double zz_rudder, zz_psi0;
+    autopilot ap;             /* heading and depth hold (scenario commands) */
     manoeuvre man;
     /* Drive (full plant). */
     drive_segment drive;

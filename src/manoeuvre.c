@@ -27,11 +27,21 @@ static void along_across(const manoeuvre *m, double x, double y, double *along, 
 
 static void turning_update(manoeuvre *m, double t, double x, double y, double psi,
                            double speed, double yaw_rate, double rudder_cmd) {
+    if (m->r.turn_ended) {
+        return;
+    }
+    if (m->r.turn_executed && rudder_cmd != m->rudder0) {
+        /* The rudder left its execute angle: the turn is over, its figures final. */
+        m->r.turn_ended = true;
+        m->r.turn_end_s = t;
+        return;
+    }
     if (!m->r.turn_executed) {
         if (rudder_cmd == 0.0) {
             return;
         }
         m->r.turn_executed = true;
+        m->rudder0 = rudder_cmd;
         m->t0 = t;
         m->x0 = x;
         m->y0 = y;

@@ -7,10 +7,12 @@
  *                   has changed by 90 degrees;
  *   transfer        distance across the approach heading at 90 degrees;
  *   tactical diam.  distance across the approach heading at 180 degrees;
- *   steady diameter 2 U / |r| at the end of the run, once the heading has
+ *   steady diameter 2 U / |r| at the end of the turn, once the heading has
  *                   changed by 360 degrees or more;
  *   speed loss      1 - U_end / U_execute.
- * Crossing points are interpolated linearly between frames.
+ * The turn ends when the rudder command leaves its execute angle (or at the
+ * end of the run); the figures stay those measured until then. Crossing
+ * points are interpolated linearly between frames.
  *
  * Zig-zag: the overshoot angles (how far the heading goes beyond the
  * threshold after each rudder reversal) and the period (time between
@@ -27,6 +29,8 @@
 typedef struct {
     /* Turning circle; a flag says which figures the run reached. */
     bool turn_executed;
+    bool turn_ended;       /* the rudder left its execute angle at turn_end_s */
+    double turn_end_s;     /* [s] */
     bool has_advance;      /* heading changed by 90 deg */
     bool has_tactical;     /* heading changed by 180 deg */
     bool has_steady;       /* heading changed by 360 deg */
@@ -46,6 +50,7 @@ typedef struct {
     manoeuvre_result r;
     /* Turning circle state. */
     double t0, x0, y0, psi0, speed0;
+    double rudder0;       /* [rad] the rudder command at execute */
     double cos0, sin0;    /* approach heading, taken once at execute */
     double prev_x, prev_y, prev_dpsi;
     bool have_prev;

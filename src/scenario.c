@@ -15,7 +15,8 @@
 #define MAX_TIME_S 1.0e6
 
 const char *const scenario_command_names[SCN_COMMAND_COUNT] = {
-    "rudder", "stern", "bow_port", "bow_stbd", "n_rpm", "buoyancy",
+    "rudder", "stern", "bow_port", "bow_stbd", "n_rpm", "buoyancy", "heading", "depth",
+    "autopilot",
     "switch_open", "leg_short", "dc_cap", "battery_cutoff", "fin_jam", "current_offset",
     "phase_open", "prop_fouling",
 };
@@ -24,6 +25,7 @@ const char *const scenario_command_names[SCN_COMMAND_COUNT] = {
 static const char *const switch_symbols[] = {"a+", "a-", "b+", "b-", "c+", "c-", NULL};
 static const char *const leg_symbols[] = {"a", "b", "c", NULL};
 static const char *const on_symbols[] = {"on", NULL};
+static const char *const off_symbols[] = {"off", NULL};
 static const char *const fin_symbols[] = {"rudder", "stern", "bow_port", "bow_stbd", NULL};
 
 /* What a value may be: its unit, whether "deg" may follow, and its range. */
@@ -42,6 +44,9 @@ static const value_rule command_rules[SCN_COMMAND_COUNT] = {
     {"rad", true, -45.0 * DEG_TO_RAD, 45.0 * DEG_TO_RAD, NULL},
     {"rpm", false, -1500.0, 1500.0, NULL},
     {"N", false, -5340.0, 5340.0, NULL},
+    {"rad", true, -360.0 * DEG_TO_RAD, 360.0 * DEG_TO_RAD, NULL},
+    {"m", false, 0.0, 1e4, NULL},
+    {"", false, 1.0, 1.0, off_symbols},
     {"", false, 1.0, 6.0, switch_symbols},
     {"", false, 1.0, 3.0, leg_symbols},
     {"", false, 0.05, 1.0, NULL},
@@ -125,20 +130,26 @@ static bool read_value(parser *p, const parse_token *field, const char *text, si
     double v = 0.0;
     size_t used = 0;
     bool number = parse_number(text, n, &v, &used);
-    if (number && used != n) {
+    const bool deg = number && used != n;
+    if (deg) {
         number = rule->angle && parse_word_is(text + used, n - used, "deg");
-        v *= DEG_TO_RAD;
     }
     if (!number) {
         return fail(p, field, "expected a number%s%s%s, got '%.*s'",
                     (rule->unit[0] != '\0') ? " in " : "", rule->unit,
                     rule->angle ? " (or with the suffix deg)" : "", (int)n, text);
     }
-    if (!(v >= rule->min && v <= rule->max)) {
-        return fail(p, field, "value %g%s%s out of range [%g, %g]", v,
-                    (rule->unit[0] != '\0') ? " " : "", rule->unit, rule->min, rule->max);
+    const double scale = deg ? DEG_TO_RAD : 1.0;
+    if (!(v * scale >= rule->min && v * scale <= rule->max)) {
+        /* In the unit as written; an angle that fits in degrees gets the suffix suggested. */
+        const bool hint = rule->angle && !deg && v * DEG_TO_RAD >= rule->min &&
+                          v * DEG_TO_RAD <= rule->max;
+        return fail(p, field, "value %g%s%s out of range [%g, %g]%s%.*s%s", v,
+                    (rule->unit[0] != '\0') ? " " : "", deg ? "deg" : rule->unit,
+                    rule->min / scale, rule->max / scale, hint ? " (did you mean " : "",
+                    hint ? (int)n : 0, text, hint ? "deg?)" : "");
     }
-    *out = v;
+    *out = v * scale;
     return true;
 }
 
@@ -192,6 +203,9 @@ static bool parse_init(parser *p, const parse_token *tok, size_t n) {
         if (!read_value(p, &name, value.text, value.len, &state_rules[k], &p->s->init[k])) {
             return false;
         }
+        if (k == (int)VESSEL_N_RPM) {
+            p->s->init_rpm_line = (uint16_t)(p->line > 65535u ? 65535u : p->line);
+        }
     }
     return true;
 }
@@ -234,7 +248,8 @@ static bool parse_at(parser *p, const parse_token *tok, size_t n) {
         int c = find_name(&name, scenario_command_names, SCN_COMMAND_COUNT);
         if (c < 0) {
             return fail(p, &name, "unknown command (expected rudder, stern, bow_port, "
-                                  "bow_stbd, n_rpm, buoyancy or a fault)");
+                                  "bow_stbd, n_rpm, buoyancy, heading, depth, autopilot "
+                                  "or a fault)");
         }
         double v = 0.0;
         if (!read_value(p, &name, value.text, value.len, &command_rules[c], &v) ||

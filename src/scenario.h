@@ -8,6 +8,9 @@
  *   init <state>=<value> ...       any of the 17 vessel states; unnamed ones start at 0
  *   at <t> <command>=<value> ...   rudder stern bow_port bow_stbd [rad, or NNdeg],
  *                                  n_rpm [rpm], buoyancy [N, the adjustment dB],
+ *                                  heading [rad, or NNdeg] and depth [m]: the autopilots
+ *                                  hold them (autopilot.h); autopilot=off ends both, and
+ *                                  a rudder or stern command ends that axis's,
  *                                  and the faults (docs/reliability.md):
  *                                  switch_open=a+|a-|b+|b-|c+|c-   a switch stuck open
  *                                  leg_short=a|b|c                 shoot-through: trips
@@ -51,6 +54,9 @@ typedef enum {
     SCN_BOW_STBD,    /* [rad] */
     SCN_N_RPM,       /* [rpm] shaft speed command */
     SCN_BUOYANCY,    /* [N] buoyancy adjustment dB = B - W */
+    SCN_HEADING,     /* [rad] heading the autopilot holds with the rudder */
+    SCN_DEPTH,       /* [m] depth the autopilot holds with the stern plane */
+    SCN_AUTOPILOT,   /* 1: off (both autopilots; rudder and stern plane amidships) */
     SCN_FAULT_SWITCH_OPEN,    /* switch 1..6: a+ a- b+ b- c+ c- (upper, lower) */
     SCN_FAULT_LEG_SHORT,      /* leg 1..3 */
     SCN_FAULT_DC_CAP,         /* [-] fraction of the DC-link capacitance left */
@@ -80,6 +86,7 @@ typedef struct {
 typedef struct {
     double duration_s;                    /* [s]; 0 when the file gave none */
     double init[VESSEL_NSTATES];          /* initial vessel state */
+    uint16_t init_rpm_line;               /* line of an init n_rpm=... (0: none) */
     scenario_event events[SCENARIO_MAX_EVENTS];
     size_t n_events;
     scenario_zigzag zigzag;

@@ -29,6 +29,8 @@ const char cli_usage[] =
     "                           (no switch, leg, phase or contactor faults);\n"
     "                           event: switching instants located inside the step\n"
     "  --single-rate            every segment at 2 us (the reference)\n"
+    "  --deep-water             no free surface (the reference vessel of the vectors:\n"
+    "                           buoyancy B wherever the vehicle is)\n"
     "  --energy-audit           count the filter's and the motor's losses and print\n"
     "                           the energy balance (slower: the general fast path)\n"
     "  --slow-to-fast zoh|foh|deriv|stagger\n"
@@ -104,6 +106,7 @@ static const opt_spec options[] = {
     {"--control-frame", OPT_FRAME, NULL, FIELD(control_frame_ns)},
     {"--slow-frame", OPT_FRAME, NULL, FIELD(slow_frame_ns)},
     {"--single-rate", OPT_FLAG, NULL, FIELD(exec.single_rate)},
+    {"--deep-water", OPT_FLAG, NULL, FIELD(exec.deep_water)},
     {"--energy-audit", OPT_FLAG, NULL, FIELD(exec.energy_audit)},
     {"--realtime", OPT_FLAG, NULL, FIELD(realtime)},
     {"--json", OPT_FLAG, NULL, FIELD(json)},

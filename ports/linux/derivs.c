@@ -58,6 +58,7 @@ int uuvsim_derivs(const char *path) {
     vessel_config_default(&cfg);
     cfg.propulsion = VESSEL_PROP_MSS;
     cfg.shaft = VESSEL_SHAFT_LAG;
+    cfg.free_surface = false; /* the reference vectors' deep water */
     static vessel_model m;
     if (vessel_init(&m, &cfg) != VESSEL_OK) {
         fprintf(stderr, "uuvsim: the vessel model refused its parameters\n");

@@ -144,11 +144,23 @@ static void print_json(FILE *f_out, const run_result *r) {
     fprintf(f_out, "\"n_rpm\": %.10g, \"soc\": %.10g}", f->x[VESSEL_N_RPM],
            e->cfg.plant == EXEC_PLANT_FULL ? e->bat.soc : 1.0);
     if (m->turn_executed && !m->zigzag) {
-        fprintf(f_out, ",\n  \"turning_circle\": {\"advance_m\": %.6g, \"transfer_m\": %.6g, "
-               "\"tactical_diameter_m\": %.6g, \"steady_diameter_m\": %.6g, "
-               "\"speed_loss_pct\": %.6g}",
-               m->advance_m, m->transfer_m, m->tactical_diameter_m, m->steady_diameter_m,
-               m->speed_loss_pct);
+        /* Only the figures the turn reached. */
+        fprintf(f_out, ",\n  \"turning_circle\": {\"executed\": true");
+        if (m->has_advance) {
+            fprintf(f_out, ", \"advance_m\": %.6g, \"transfer_m\": %.6g", m->advance_m,
+                    m->transfer_m);
+        }
+        if (m->has_tactical) {
+            fprintf(f_out, ", \"tactical_diameter_m\": %.6g", m->tactical_diameter_m);
+        }
+        if (m->has_steady) {
+            fprintf(f_out, ", \"steady_diameter_m\": %.6g, \"speed_loss_pct\": %.6g",
+                    m->steady_diameter_m, m->speed_loss_pct);
+        }
+        if (m->turn_ended) {
+            fprintf(f_out, ", \"rudder_left_s\": %.6g", m->turn_end_s);
+        }
+        fprintf(f_out, "}");
     }
     if (m->zigzag) {
         fprintf(f_out, ",\n  \"zigzag\": {\"overshoot_deg\": [");
@@ -228,6 +240,10 @@ static void print_text(const run_result *r) {
         if (m->has_steady) {
             printf(", steady diameter %.1f m, speed loss %.1f %%", m->steady_diameter_m,
                    m->speed_loss_pct);
+        }
+        if (m->turn_ended) {
+            printf(" (the rudder left its angle at %.1f s%s)", m->turn_end_s,
+                   m->has_steady ? "" : ", before a full circle: no steady diameter");
         }
         printf("\n");
     }

@@ -39,7 +39,8 @@ check "derivs: 10 random rows within 1e-9 relative (floor 1e-12)" derivs_match $
 check "derivs: 8 edge rows within 1e-9 relative (floor 1e-12)" derivs_match $V/npsauv_derivatives_edge.csv
 
 straight() {
-    "$uuvsim" --quiet --plant vessel --propulsion mss --scenario scenarios/straight_1300rpm.scn \
+    "$uuvsim" --quiet --plant vessel --propulsion mss --deep-water \
+        --scenario scenarios/straight_1300rpm.scn \
         --csv "$tmp/s.csv" &&
         "$csvdiff" --rel 1e-6 --abs 1e-12 $V/npsauv_straight_1300rpm.csv "$tmp/s.csv"
 }
@@ -102,6 +103,60 @@ heading() {
 }
 check "summary: the heading is wrapped to [0, 360) beside the unwrapped psi" heading
 
+# The free surface: no run of the shipped scenarios (vessel plant, the soak's first 600 s),
+# of a surfaced start, of the README's example scenario or the default mission (full plant) has the vehicle's centre more than
+# its hull radius (0.265 m) above the surface.
+# csv_top FILE: the smallest z_m.
+csv_top() {
+    awk -F, 'NR == 1 { for (i = 1; i <= NF; i++) if ($i == "z_m") c = i; next }
+             NR == 2 || $c < m { m = $c } END { print m }' "$1"
+}
+surface() {
+    awk '/^Scenario files/ { on = 1; next } on && /^```$/ { if (in_) exit; in_ = 1; next }
+         in_ { print }' README.md >"$tmp/readme.scn" &&
+        [ -s "$tmp/readme.scn" ] &&
+        printf 'duration 120\ninit z_m=0\nat 0 buoyancy=2000\nat 10 n_rpm=1200 heading=45deg\n' \
+            >"$tmp/surfaced.scn" || return 1
+    for s in scenarios/*.scn "$tmp/surfaced.scn" full:"$tmp/readme.scn" \
+        full:scenarios/default.scn; do
+        plant=vessel; cap="--duration 600"
+        case $s in full:*) plant=full; cap=; s=${s#full:} ;; esac
+        "$uuvsim" --quiet --plant $plant --scenario "$s" $cap --csv "$tmp/sf.csv" ||
+            { echo "$s: run failed"; return 1; }
+        top=$(csv_top "$tmp/sf.csv")
+        echo "$s ($plant plant): highest centre z = $top m"
+        awk -v t="$top" 'BEGIN { exit !(t > -0.265) }' || return 1
+    done
+}
+check "free surface: no scenario, README example or surfaced start lifts the centre above -0.265 m" \
+    surface
+
+# The autopilots with the full plant, in this build: heading 0 -> 90 deg and depth 15 m at
+# 30 s (1200 rpm, from the surface) settle within 60 s (1 deg, 0.1 m) and stay to 150 s.
+autopilot() {
+    "$uuvsim" --quiet --scenario scenarios/autopilot_step.scn --csv "$tmp/ap.csv" &&
+        awk -F, 'NR == 1 { for (i = 1; i <= NF; i++) c[$i] = i; next }
+                 $c["t_s"] >= 30 { p = $c["psi_rad"] * 57.29577951308232; z = $c["z_m"]
+                     if (p < 89 || p > 91) ph = $c["t_s"] - 30
+                     if (z < 14.9 || z > 15.1) dz = $c["t_s"] - 30
+                     if (z > zm) zm = z; if (p > pm) pm = p }
+                 END { printf "heading settled %.1f s, max %.2f deg; depth settled %.1f s, max %.3f m\n",
+                       ph, pm, dz, zm; exit !(ph < 60 && dz < 60) }' "$tmp/ap.csv"
+}
+check "autopilots (full plant): heading 90 deg and depth 15 m settle within 60 s and stay" autopilot
+
+# The turn of the issue's example ends (rudder 0) before a full circle: no steady diameter.
+turn_ends() {
+    printf 'duration 120\ninit z_m=20 u_mps=1.5\nat 0 n_rpm=1200\nat 20 rudder=-20deg\nat 60 rudder=0\n' \
+        >"$tmp/tc.scn" &&
+        "$uuvsim" --scenario "$tmp/tc.scn" >"$tmp/tc.txt" && cat "$tmp/tc.txt" &&
+        grep -q 'rudder left its angle at 60.0 s' "$tmp/tc.txt" &&
+        ! grep -q 'steady diameter [0-9]' "$tmp/tc.txt" &&
+        "$uuvsim" --json --scenario "$tmp/tc.scn" | grep -q '"rudder_left_s": 60' &&
+        ! "$uuvsim" --json --scenario "$tmp/tc.scn" | grep -q steady_diameter
+}
+check "turning circle: a turn that ends before the run reports no steady diameter" turn_ends
+
 printf 'duration 10\nat 1 rudder=abc\n' >"$tmp/bad1.scn"
 expect_error "error: malformed value names file, line and field" \
     "bad1.scn:2: field 'rudder'" "$uuvsim" --scenario "$tmp/bad1.scn" --csv "$tmp/bad.csv"
@@ -136,6 +191,19 @@ expect_error "error: a frame without its unit" \
 expect_error "error: a motor frame the default controller frame is not a multiple of" \
     "option --control-frame: .*motor frames \\(150 us\\), got 800 us \\(the default: give --control-frame\\)" \
     "$uuvsim" --motor-frame 150us --scenario scenarios/bench_2s.scn
+
+printf 'duration 10\ninit u_mps=1\ninit n_rpm=1200\n' >"$tmp/rpm.scn"
+expect_error "error: an initial shaft speed with the full plant" \
+    "rpm.scn:3: field 'n_rpm': the full plant starts its motor at rest" \
+    "$uuvsim" --scenario "$tmp/rpm.scn" --csv "$tmp/bad.csv"
+printf 'duration 10\nat 1 rudder=20\n' >"$tmp/deg.scn"
+expect_error "error: an angle in the wrong unit suggests deg" \
+    "deg.scn:2: field 'rudder': value 20 rad out of range .*did you mean 20deg" \
+    "$uuvsim" --scenario "$tmp/deg.scn"
+printf 'duration 10\nat 1 rudder=46deg\n' >"$tmp/deg.scn"
+expect_error "error: an angle out of range in degrees is reported in degrees" \
+    "deg.scn:2: field 'rudder': value 46 deg out of range \[-45, 45\]" \
+    "$uuvsim" --scenario "$tmp/deg.scn"
 
 echo "$pass passed, $fail failed"
 [ $fail -eq 0 ]

@@ -158,6 +158,7 @@ static void test_vessel_only(void) {
             "boundary at or after its time, the shaft follows its 0.1 s lag, and the drive's "
             "fields stay zero");
     UT_CHECK(load("duration 1\n"
+                  "init z_m=10\n"
                   "at 0 n_rpm=1000 buoyancy=200\n"
                   "at 0.3 rudder=10deg stern=-5deg\n"
                   "at 0.45 bow_port=3deg bow_stbd=-3deg\n"));
@@ -664,11 +665,122 @@ static void test_overruns(void) {
     UT_EQ_INT(ex.count.slow, 0);
 }
 
+/* ---- Autopilots ------------------------------------------------------------ */
+
+/* When the heading and depth enter their bands and stay, and their extremes. */
+typedef struct {
+    double heading_in_s, depth_in_s; /* [s] last time outside the band (from the command) */
+    double heading_max_deg, depth_max_m;
+    double top_m;                    /* [m] highest point of the centre (most negative z) */
+} step_log;
+
+static void run_steps(const exec_config *c, double t_cmd, double psi_deg, double z_m,
+                      step_log *log) {
+    *log = (step_log){0};
+    log->top_m = 1e9;
+    UT_EQ_INT(exec_init(&ex, c, &scn), EXEC_OK);
+    for (uint32_t k = 0u; k < 10000000u && ex.state == EXEC_RUNNING; k++) {
+        exec_desk_step(&ex);
+        exec_frame f;
+        if (!exec_report_take(&ex, &f)) {
+            continue;
+        }
+        const double psi = f.x[VESSEL_PSI_RAD] / DEG, z = f.x[VESSEL_Z_M];
+        log->top_m = (z < log->top_m) ? z : log->top_m;
+        if (f.t_s < t_cmd) {
+            continue;
+        }
+        log->heading_max_deg = (psi > log->heading_max_deg) ? psi : log->heading_max_deg;
+        log->depth_max_m = (z > log->depth_max_m) ? z : log->depth_max_m;
+        if (!(psi > psi_deg - 1.0 && psi < psi_deg + 1.0)) {
+            log->heading_in_s = f.t_s - t_cmd;
+        }
+        if (!(z > z_m - 0.1 && z < z_m + 0.1)) {
+            log->depth_in_s = f.t_s - t_cmd;
+        }
+    }
+}
+
+static void test_autopilot_steps(void) {
+    UT_TEST("autopilots: at 1200 rpm from the surface, heading 0 -> 90 deg and depth 15 m "
+            "commanded at 30 s settle within 60 s (heading within 1 deg, depth within 0.1 m) "
+            "and stay to 150 s; the centre never rises above the surface by its radius");
+    UT_CHECK(load("duration 150\n"
+                  "at 0 n_rpm=1200 heading=0\n"
+                  "at 30 heading=90deg depth=15\n"));
+    exec_config c;
+    config_vessel(&c);
+    step_log log;
+    run_steps(&c, 30.0, 90.0, 15.0, &log);
+    UT_EQ_INT(ex.state, EXEC_DONE);
+    UT_CHECK(log.heading_in_s < 60.0);
+    UT_CHECK(log.depth_in_s < 60.0);
+    UT_CHECK(log.top_m > -vessel_params_npsauv2.hull_radius_m);
+    ut_info("heading settled %.1f s after the command, overshoot %.2f deg; depth %.1f s, "
+            "overshoot %.3f m", log.heading_in_s, log.heading_max_deg - 90.0, log.depth_in_s,
+            log.depth_max_m - 15.0);
+
+    UT_TEST("autopilots: 2000 N of positive buoyancy at 10 m: the depth integral removes the "
+            "offset (within 0.1 m 60 s after the start, to 120 s, and within 1 cm at the end)");
+    UT_CHECK(load("duration 120\n"
+                  "init z_m=10 u_mps=3\n"
+                  "at 0 n_rpm=1200 heading=0 depth=10 buoyancy=2000\n"));
+    run_steps(&c, 0.0, 0.0, 10.0, &log);
+    UT_CHECK(log.depth_in_s < 60.0);
+    UT_CHECK(log.heading_in_s < 1.0);
+    UT_NEAR(ex.x[VESSEL_Z_M], 10.0, 0.01);
+    ut_info("depth within 0.1 m from %.1f s; %.4f m at the end", log.depth_in_s,
+            ex.x[VESSEL_Z_M]);
+}
+
+static void test_autopilot_commands(void) {
+    UT_TEST("autopilots: a manual rudder or stern command ends that axis's autopilot; "
+            "autopilot=off ends both and puts the rudder and stern plane amidships");
+    UT_CHECK(load("duration 1\n"
+                  "init z_m=5\n"
+                  "at 0 n_rpm=1000 heading=30deg depth=10\n"
+                  "at 0.3 rudder=5deg\n"
+                  "at 0.5 heading=-30deg stern=-2deg\n"
+                  "at 0.7 heading=30deg depth=10\n"
+                  "at 0.9 autopilot=off\n"));
+    exec_config c;
+    config_vessel(&c);
+    UT_EQ_INT(run(&c), EXEC_OK);
+    UT_EQ_INT(n_recs, 11);
+    UT_CHECK(recs[2].cmd[0] < 0.0); /* to starboard: negative rudder */
+    UT_CHECK(recs[2].cmd[1] > 0.0); /* deeper: nose down */
+    UT_NEAR(recs[3].cmd[0], 5.0 * DEG, 0.0);
+    UT_NEAR(recs[4].cmd[0], 5.0 * DEG, 0.0);
+    UT_CHECK(recs[5].cmd[0] > 5.0 * DEG); /* the heading autopilot again, to port */
+    UT_NEAR(recs[5].cmd[1], -2.0 * DEG, 0.0);
+    UT_NEAR(recs[6].cmd[1], -2.0 * DEG, 0.0);
+    UT_CHECK(recs[8].cmd[1] > -2.0 * DEG);
+    UT_NEAR(recs[9].cmd[0], 0.0, 0.0);
+    UT_NEAR(recs[9].cmd[1], 0.0, 0.0);
+    UT_NEAR(recs[10].cmd[0], 0.0, 0.0);
+
+    UT_TEST("autopilots: a zig-zag drives the rudder over the heading autopilot; a jammed "
+            "stern plane holds against the depth autopilot");
+    UT_CHECK(load("duration 1\n"
+                  "init z_m=5 u_mps=2\n"
+                  "at 0 n_rpm=1000 heading=30deg depth=10\n"
+                  "at 0.5 fin_jam=stern\n"
+                  "zigzag rudder=10deg heading=10deg start=0.2\n"));
+    UT_EQ_INT(run(&c), EXEC_OK);
+    UT_CHECK(recs[1].cmd[0] < 0.0);
+    UT_NEAR(recs[3].cmd[0], 10.0 * DEG, 0.0);
+    UT_NEAR(recs[10].cmd[0], 10.0 * DEG, 0.0);
+    UT_NEAR(recs[10].cmd[1], recs[5].cmd[1], 0.0);
+    UT_CHECK(!ex.ap.heading_on);
+}
+
 void suite_exec_paths(void) {
     test_config_errors();
     test_vessel_only();
     test_fin_jam();
     test_zigzag();
+    test_autopilot_steps();
+    test_autopilot_commands();
     test_drive_faults();
     test_more_faults();
     test_options();

@@ -188,8 +188,9 @@ static bool check_text(const exec_config *cfg, const char *text, scenario_error 
 /*
  * exec_check_scenario(): every command in the default configuration and
  * with the event inverter; the drive's faults refused by the vessel plant,
- * the four that end in blocked gates by the averaged layer, each with its
- * line and name.
+ * the four that end in blocked gates by the averaged layer, an initial shaft
+ * speed by the full plant (its motor starts at rest), each with its line and
+ * name.
  */
 static void test_scenario_check(void) {
     static const char *const all = "duration 1\n"
@@ -226,6 +227,14 @@ static void test_scenario_check(void) {
     UT_EQ_INT(err.line, 3u);
     UT_CHECK(ut_text_equal(err.field, "dc_cap"));
     UT_CHECK(check_text(&cfg, "at 0 n_rpm=800 fin_jam=rudder\n", &err));
+
+    /* An initial shaft speed: the vessel plant takes it, the full plant refuses it. */
+    static const char *const spun = "duration 1\ninit u_mps=1\ninit n_rpm=1200\n";
+    UT_CHECK(check_text(&cfg, spun, &err));
+    exec_config_default(&cfg);
+    UT_CHECK(!check_text(&cfg, spun, &err));
+    UT_EQ_INT(err.line, 3u);
+    UT_CHECK(ut_text_equal(err.field, "n_rpm") && err.message[0] != '\0');
 }
 
 void suite_executive(void) {

@@ -59,6 +59,31 @@ static void test_more_forms(void) {
     expect_error("at 1 n_rpm=x\n", 1, "n_rpm");
     UT_CHECK(!message_has("deg"));
 
+    UT_TEST("scenario errors: an angle out of range is reported in the unit it was written "
+            "in, and a plain number that fits in degrees gets 'did you mean 20deg?'");
+    expect_error("at 1 rudder=20\n", 1, "rudder");
+    UT_CHECK(message_has("value 20 rad") && message_has("did you mean 20deg?"));
+    expect_error("at 1 rudder=46deg\n", 1, "rudder");
+    UT_CHECK(message_has("value 46 deg out of range [-45, 45]") && !message_has("mean"));
+    expect_error("at 1 rudder=100\n", 1, "rudder");
+    UT_CHECK(!message_has("mean"));
+
+    UT_TEST("scenario: the autopilot commands heading (rad or deg), depth [m] and "
+            "autopilot=off; bad values are refused");
+    UT_CHECK(parse("at 60 heading=90deg depth=15\nat 70 heading=-1.5\nat 80 autopilot=off\n"));
+    UT_EQ_INT(scn.n_events, 4);
+    UT_EQ_INT(scn.events[0].command, SCN_HEADING);
+    UT_NEAR(scn.events[0].value, 1.5707963267948966, 1e-15);
+    UT_EQ_INT(scn.events[1].command, SCN_DEPTH);
+    UT_NEAR(scn.events[1].value, 15.0, 0.0);
+    UT_NEAR(scn.events[2].value, -1.5, 0.0);
+    UT_EQ_INT(scn.events[3].command, SCN_AUTOPILOT);
+    expect_error("at 1 depth=-2\n", 1, "depth");
+    expect_error("at 1 depth=5deg\n", 1, "depth");
+    expect_error("at 1 heading=400deg\n", 1, "heading");
+    expect_error("at 1 autopilot=on\n", 1, "autopilot");
+    UT_CHECK(message_has("off"));
+
     UT_TEST("scenario: tabs separate fields, the last line needs no newline");
     UT_CHECK(parse("duration\t30\nat\t2\trudder=-5deg\tn_rpm=900"));
     UT_NEAR(scn.duration_s, 30.0, 0.0);

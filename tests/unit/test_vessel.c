@@ -71,6 +71,7 @@ static vessel_model *model_with(vessel_model *m, vessel_propulsion law,
     vessel_config_default(&cfg);
     cfg.propulsion = law;
     cfg.shaft = shaft;
+    cfg.free_surface = false; /* deep water: the reference model of the vectors */
     UT_CHECK(vessel_init(m, &cfg) == VESSEL_OK);
     return m;
 }
@@ -244,6 +245,7 @@ static void test_restoring(void) {
     vessel_model *m = &vm_a;
     vessel_config_default(&cfg);
     cfg.params = &p;
+    cfg.free_surface = false;
     UT_CHECK(vessel_init(m, &cfg) == VESSEL_OK);
     double x[VESSEL_NSTATES], dx[VESSEL_NSTATES];
     zero_state(x);
@@ -443,7 +445,7 @@ static void test_init(void) {
 
 /*
  * Each range check of vessel_init (vessel.h and vessel_params.h: positive
- * length, g, rho, W, B and inertias; non-negative drag and hull sizes;
+ * length, g, rho, W, B, inertias and hull radius; non-negative drag and hull sizes;
  * positive finite limits and lag; frame in (0, 1]; a valid propeller).
  */
 static void test_init_fields(void) {
@@ -455,7 +457,7 @@ static void test_init_fields(void) {
     vessel_params p;
     vessel_config_default(&cfg);
     cfg.params = &p;
-    for (unsigned k = 0u; k < 16u; k++) {
+    for (unsigned k = 0u; k < 17u; k++) {
         p = vessel_params_npsauv2;
         switch (k) {
         case 0u: p.length_m = 0.0; break;
@@ -473,6 +475,7 @@ static void test_init_fields(void) {
         case 12u: p.cd0 = -0.1; break;
         case 13u: p.fin_limit_rad = math_inf_f64(); break;
         case 14u: p.shaft_limit_rpm = -1500.0; break;
+        case 15u: p.hull_radius_m = 0.0; break;
         default: p.actuator_tau_s = math_nan_f64(); break;
         }
         if (!UT_CHECK(vessel_init(m, &cfg) == VESSEL_ERR_PARAM)) {
@@ -534,6 +537,135 @@ static void test_counters_and_pitch(void) {
 }
 
 /* FNV-1a over the bits of the state, to compare host and target runs. */
+/* ---- Free surface ---------------------------------------------------------- */
+
+/*
+ * The axis depth at which a cylinder of radius r floats when the fraction
+ * `frac` of its volume is under water, from the segment's central angle a:
+ * the submerged area is (a - sin a) / (2 pi) of the circle's, and the axis
+ * lies r cos(a/2) below the water line when a > pi. Bisection on a, so the
+ * figure does not come from the model's own formula.
+ */
+static double float_depth(double frac, double r) {
+    double lo = 0.0, hi = 2.0 * 3.14159265358979323846;
+    for (int k = 0; k < 80; k++) {
+        const double a = 0.5 * (lo + hi);
+        if ((a - math_sin_f64(a)) / (2.0 * 3.14159265358979323846) < frac) {
+            lo = a;
+        } else {
+            hi = a;
+        }
+    }
+    return -r * math_cos_f64(0.25 * (lo + hi));
+}
+
+static vessel_model *model_surface(vessel_model *m) {
+    vessel_config cfg;
+    vessel_config_default(&cfg);
+    UT_CHECK(cfg.free_surface);
+    UT_CHECK(vessel_init(m, &cfg) == VESSEL_OK);
+    return m;
+}
+
+static void test_free_surface(void) {
+    UT_TEST("free surface: with the hull under water (each reference row 10 m deeper), the "
+            "derivatives equal the deep-water model's bit for bit");
+    vessel_model *deep = model_with(&vm_a, VESSEL_PROP_MSS, VESSEL_SHAFT_LAG);
+    vessel_config cfg;
+    vessel_config_default(&cfg);
+    cfg.propulsion = VESSEL_PROP_MSS;
+    vessel_model *sea = &vm_b;
+    UT_CHECK(vessel_init(sea, &cfg) == VESSEL_OK);
+    bool same = true;
+    for (int r = 0; r < 18; r++) {
+        const double *row = vec_derivs[r];
+        const vessel_cmd cmd = cmd_of(&row[VEC_COL_CMD]);
+        double x[VESSEL_NSTATES], d1[VESSEL_NSTATES], d2[VESSEL_NSTATES];
+        copy_state(x, &row[VEC_COL_STATE]);
+        x[VESSEL_Z_M] += 10.0;
+        (void)vessel_derivatives(deep, x, &cmd, d1);
+        (void)vessel_derivatives(sea, x, &cmd, d2);
+        for (int i = 0; i < VESSEL_NSTATES; i++) {
+            same = same && math_bits_f64(d1[i]) == math_bits_f64(d2[i]);
+        }
+    }
+    UT_CHECK(same);
+
+    UT_TEST("free surface: dry, the hull has no buoyancy (W pulls it down at g); half out, "
+            "half of B acts (to 1e-3 N)");
+    sea = model_surface(&vm_b);
+    double x[VESSEL_NSTATES], dx[VESSEL_NSTATES];
+    const vessel_cmd rest = {0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0};
+    zero_state(x);
+    x[VESSEL_Z_M] = -1.0;
+    (void)vessel_derivatives(sea, x, &rest, dx);
+    UT_NEAR(sea->mass_matrix[2][2] * dx[VESSEL_W_MPS] +
+                sea->mass_matrix[2][4] * dx[VESSEL_Q_RADPS],
+            53400.0, 1e-9);
+    x[VESSEL_Z_M] = 0.0;
+    (void)vessel_derivatives(sea, x, &rest, dx);
+    UT_NEAR(sea->mass_matrix[2][2] * dx[VESSEL_W_MPS] +
+                sea->mass_matrix[2][4] * dx[VESSEL_Q_RADPS],
+            26700.0, 1e-3); /* the asin polynomial: 7e-9 of B */
+
+    /* Delta B = +2000 N: 96.4 % of the hull under water at equilibrium. */
+    const double r_hull = vessel_params_npsauv2.hull_radius_m;
+    const double z_eq = float_depth(53400.0 / 55400.0, r_hull);
+    const vessel_cmd up = {0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 2000.0, 0.0};
+    UT_TEST("free surface: a vehicle 2000 N positively buoyant, at rest at the analytic "
+            "floating depth, level, stays there (within 1 mm for 60 s)");
+    zero_state(x);
+    x[VESSEL_Z_M] = z_eq;
+    double dev = 0.0;
+    for (int k = 0; k < 600; k++) {
+        (void)vessel_step(sea, x, &up);
+        const double d = math_fabs_f64(x[VESSEL_Z_M] - z_eq);
+        dev = (d > dev) ? d : dev;
+    }
+    UT_CHECK(dev < 1e-3);
+    UT_NEAR(x[VESSEL_THETA_RAD], 0.0, 1e-6);
+    ut_info("analytic axis depth %.4f m (draft %.4f m); largest deviation %.2e m", z_eq,
+            z_eq + r_hull, dev);
+
+    UT_TEST("free surface: released from rest at 10 m it rises, never has its centre more "
+            "than the hull radius above the water, and settles at the analytic draft "
+            "(mean of the last 60 s of 300 s within 1 cm, the oscillation decaying)");
+    zero_state(x);
+    x[VESSEL_Z_M] = 10.0;
+    double top = 10.0, sum = 0.0, early = 0.0, late = 0.0;
+    for (int k = 0; k < 3000; k++) {
+        (void)vessel_step(sea, x, &up);
+        const double z = x[VESSEL_Z_M];
+        top = (z < top) ? z : top;
+        const double d = math_fabs_f64(z - z_eq);
+        if (k >= 2400) {
+            sum += z;
+            late = (d > late) ? d : late;
+        } else if (k >= 600 && k < 1200) {
+            early = (d > early) ? d : early;
+        }
+    }
+    const double mean = sum / 600.0;
+    UT_CHECK(top > -r_hull);
+    UT_NEAR(mean, z_eq, 0.01);
+    UT_CHECK(late < early);
+    ut_info("highest centre %.3f m; mean depth %.4f m (analytic %.4f); swing %.3f m at "
+            "60-120 s, %.3f m at 240-300 s", top, mean, z_eq, early, late);
+
+    UT_TEST("free surface: the CG 5 cm forward of the CB trims the floating vehicle by the "
+            "bow (theta < 0), level with the CG under the CB");
+    vessel_params p = vessel_params_npsauv2;
+    p.r_g_m[0] = 0.05;
+    cfg.params = &p;
+    cfg.propulsion = VESSEL_PROP_PAPER;
+    UT_CHECK(vessel_init(&vm_a, &cfg) == VESSEL_OK);
+    zero_state(x);
+    x[VESSEL_Z_M] = z_eq;
+    run(&vm_a, x, &up, 300);
+    UT_CHECK(x[VESSEL_THETA_RAD] < -0.005);
+    ut_info("trim after 30 s: %.2f deg", x[VESSEL_THETA_RAD] * 57.29577951308232);
+}
+
 static uint64_t state_hash(const double x[VESSEL_NSTATES]) {
     uint64_t h = 14695981039346656037ull;
     for (int i = 0; i < VESSEL_NSTATES; i++) {
@@ -573,5 +705,6 @@ void suite_vessel(void) {
     test_init();
     test_init_fields();
     test_counters_and_pitch();
+    test_free_surface();
     test_determinism();
 }

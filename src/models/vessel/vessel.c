@@ -20,6 +20,7 @@ void vessel_config_default(vessel_config *cfg) {
     cfg->propeller = &propeller_params_default;
     cfg->propulsion = VESSEL_PROP_PAPER;
     cfg->shaft = VESSEL_SHAFT_LAG;
+    cfg->free_surface = true;
     cfg->step_s = 0.1;
 }
 
@@ -32,7 +33,8 @@ static bool vessel_params_valid(const vessel_params *p) {
     bool ok = (p->length_m > 0.0) && (p->gravity_mps2 > 0.0) && (p->rho_kgpm3 > 0.0) &&
               (p->weight_n > 0.0) && (p->buoyancy_n > 0.0) && (p->ix_kgm2 > 0.0) &&
               (p->iy_kgm2 > 0.0) && (p->iz_kgm2 > 0.0) && (p->cdy >= 0.0) && (p->cdz >= 0.0) &&
-              (p->hx_m >= 0.0) && (p->bx_m >= 0.0) && (p->cd0 >= 0.0);
+              (p->hx_m >= 0.0) && (p->bx_m >= 0.0) && (p->hull_radius_m > 0.0) &&
+              (p->cd0 >= 0.0);
     for (int i = 0; i < 3; i++) {
         ok = ok && (lims[i] > 0.0) && math_isfinite_f64(lims[i]);
     }
@@ -99,6 +101,7 @@ vessel_status vessel_init(vessel_model *m, const vessel_config *cfg) {
     m->params = *p;
     m->propulsion = cfg->propulsion;
     m->shaft = cfg->shaft;
+    m->free_surface = cfg->free_surface;
     m->step_s = cfg->step_s;
     vessel_derive(m);
     if (!vessel_mass_build(m)) {
@@ -128,7 +131,7 @@ unsigned vessel_derivatives(const vessel_model *m, const double x[VESSEL_NSTATES
     vessel_tau_hydro(m, x, tau);
     vessel_tau_crossflow(m, x, tau);
     ev |= vessel_tau_control(m, x, &act, tau);
-    vessel_tau_restoring(m, &trig, cmd->delta_b_n, tau);
+    vessel_tau_restoring(m, &trig, x, cmd->delta_b_n, tau);
 
     for (int i = 0; i < 6; i++) {
         double s = 0.0;

@@ -18,6 +18,7 @@
 #ifndef UUV_VESSEL_H
 #define UUV_VESSEL_H
 
+#include <stdbool.h>
 #include <stdint.h>
 
 #include "models/propeller/propeller.h"
@@ -74,6 +75,8 @@ typedef struct {
     const propeller_params *propeller; /* NULL selects propeller_params_default */
     vessel_propulsion propulsion;
     vessel_shaft_source shaft;
+    bool free_surface;                 /* buoyancy of the submerged hull only (docs/vessel.md);
+                                        * false: deep water, the reference model */
     double step_s;                     /* [s] RK4 frame, in (0, 1] */
 } vessel_config;
 
@@ -94,6 +97,7 @@ typedef struct {
     propeller_model prop;
     vessel_propulsion propulsion;
     vessel_shaft_source shaft;
+    bool free_surface;         /* see vessel_config */
     double step_s;             /* [s] */
     double mass_kg;            /* [kg] W / g */
     double r2, r3, r4, r5;     /* 0.5*rho*L^k, the prime-system scale factors (SI) */
@@ -114,7 +118,7 @@ typedef enum {
     VESSEL_ERR_MASS_MATRIX  /* the mass matrix is singular */
 } vessel_status;
 
-/* Default configuration: NPS AUV II, `paper` law, shaft through the lag, 0.1 s. */
+/* Default configuration: NPS AUV II, `paper` law, shaft through the lag, free surface, 0.1 s. */
 void vessel_config_default(vessel_config *cfg);
 
 /*

@@ -44,9 +44,12 @@ unsigned vessel_trig_eval(const double x[VESSEL_NSTATES], vessel_trig *t);
 /* Kinematics: deta = J(eta) * nu (states 7-12). */
 void vessel_kinematics(const vessel_trig *t, const double x[VESSEL_NSTATES], double deta[6]);
 
-/* Adds the restoring forces -g(eta) for weight W and buoyancy B + delta_b_n. */
-void vessel_tau_restoring(const vessel_model *m, const vessel_trig *t, double delta_b_n,
-                          double tau[6]);
+/*
+ * Adds the restoring forces -g(eta) for weight W and buoyancy B + delta_b_n,
+ * with the free surface: of the part of the hull under water (x: the state).
+ */
+void vessel_tau_restoring(const vessel_model *m, const vessel_trig *t,
+                          const double x[VESSEL_NSTATES], double delta_b_n, double tau[6]);
 
 /* Adds the hydrodynamic damping and the rigid-body Coriolis and centripetal terms. */
 void vessel_tau_hydro(const vessel_model *m, const double x[VESSEL_NSTATES], double tau[6]);

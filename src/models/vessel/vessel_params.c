@@ -25,6 +25,7 @@ const vessel_params vessel_params_npsauv2 = {
     .cdz = 0.6,
     .hx_m = 0.53,
     .bx_m = 0.53,
+    .hull_radius_m = 0.265,
     .cd0 = 0.00385,
     .fin_limit_rad = 20.0 * MATH_DEG_TO_RAD_F64,
     .shaft_limit_rpm = 1500.0,

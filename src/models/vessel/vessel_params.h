@@ -61,6 +61,7 @@ typedef struct {
     double cdz;               /* [-] cross-flow drag coefficient, heave */
     double hx_m;              /* [m] average height of the hull sections */
     double bx_m;              /* [m] average width of the hull sections */
+    double hull_radius_m;     /* [m] radius of the hull's circular sections (free surface) */
     double cd0;               /* [-] surge drag / propulsion coefficient */
     double fin_limit_rad;     /* [rad] clamp of the four fin deflections */
     double shaft_limit_rpm;   /* [rpm] clamp of the commanded shaft speed */
