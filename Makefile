@@ -73,6 +73,7 @@ $(1)_SRC_O := $$(patsubst %.c,$$($(1)_DIR)/obj/%.o,$(SRC_C) $(LINUX_PORT_C))
 $(1)_TEST_O := $$(patsubst %.c,$$($(1)_DIR)/obj/%.o,$(TEST_C))
 $(1)_UUVSIM_O := $$(patsubst %.c,$$($(1)_DIR)/obj/%.o,$(UUVSIM_C))
 $(1)_BENCH_O := $$($(1)_DIR)/obj/ports/linux/bench.o
+$(1)_PROP_O := $$($(1)_DIR)/obj/tests/host/property.o
 $(1)_FAIL_O := $$(filter-out %/test_harness.o,$$($(1)_TEST_O)) $$($(1)_DIR)/obj-mustfail/test_harness.o
 
 # src/ is compiled freestanding on the host too, which proves it needs no libc.
@@ -108,6 +109,9 @@ $$($(1)_DIR)/uuvsim: $$($(1)_SRC_O) $$($(1)_UUVSIM_O)
 	$(2) $(5) -o $$@ $$^ -lm
 
 $$($(1)_DIR)/bench: $$($(1)_SRC_O) $$($(1)_BENCH_O)
+	$(2) $(5) -o $$@ $$^ -lm
+
+$$($(1)_DIR)/property: $$($(1)_SRC_O) $$($(1)_PROP_O)
 	$(2) $(5) -o $$@ $$^ -lm
 
 -include $$(wildcard $$($(1)_DIR)/obj/*/*.d $$($(1)_DIR)/obj/*/*/*.d $$($(1)_DIR)/obj/*/*/*/*.d $$($(1)_DIR)/obj/*/*/*/*/*.d $$($(1)_DIR)/obj/*/*/*/*/*/*.d)
@@ -310,7 +314,8 @@ HOST_TOOLS := $(BUILD)/tools/check_tables $(BUILD)/tools/gen_wavetables \
 all: $(foreach v,linux-fixed linux-float,$(BUILD)/$(v)/unit_tests $(BUILD)/$(v)/uuvsim)
 
 host-all: $(foreach v,$(HOST_VARIANTS),$(BUILD)/$(v)/unit_tests $(BUILD)/$(v)/uuvsim) \
-          $(BUILD)/linux-fixed/unit_tests_mustfail
+          $(BUILD)/linux-fixed/unit_tests_mustfail \
+          $(foreach v,linux-fixed linux-float,$(BUILD)/$(v)/property)
 
 firmware: $(FW_IMAGES) $(FW_SIMS) $(BUILD)/cortexm-mps2-an385-fixed/unit_tests_mustfail.elf
 

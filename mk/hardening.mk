@@ -10,8 +10,24 @@
 #   make san-sim    the 60 s desk simulation under ASan + UBSan, both builds
 #   make soak       one hour of the soak mission per build with the energy
 #                   audit (SOAK_SECONDS; make test runs 600 s of it)
+#   make property-campaign  the property test (no non-finite output) over
+#                   PROPERTY_CASES random cases of up to PROPERTY_SECONDS per
+#                   build, and PROPERTY_CLI_CASES through uuvsim (make test:
+#                   3000 of up to 20 s, and 100)
 
-.PHONY: lint prove fuzz fuzz-build fuzz-replay coverage san-sim soak
+.PHONY: lint prove fuzz fuzz-build fuzz-replay coverage san-sim soak property-campaign
+
+PROPERTY_CASES ?= 100000
+PROPERTY_SECONDS ?= 120
+PROPERTY_CLI_CASES ?= 2000
+PROPERTY_SEED ?= 2
+property-campaign: $(foreach v,fixed float,$(BUILD)/linux-$(v)/property $(BUILD)/linux-$(v)/uuvsim)
+	@for v in fixed float; do log=$(BUILD)/property-$$v.log; \
+	    $(BUILD)/linux-$$v/property $(PROPERTY_CASES) $(PROPERTY_SEED) $(PROPERTY_SECONDS) \
+	        > $$log; s=$$?; tail -n 2 $$log; [ $$s -eq 0 ] || exit 1; \
+	    sh tests/host/test_property.sh $(BUILD)/linux-$$v/uuvsim $(PROPERTY_CLI_CASES) \
+	        $(PROPERTY_SEED) $(PROPERTY_SECONDS) > $$log; s=$$?; tail -n 2 $$log; \
+	    [ $$s -eq 0 ] || exit 1; done
 
 SOAK_SECONDS ?= 3600
 soak: $(BUILD)/linux-fixed/uuvsim $(BUILD)/linux-float/uuvsim

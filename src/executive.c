@@ -587,6 +587,22 @@ static void battery_frame(exec *e) {
     }
 }
 
+/*
+ * Bit i set when state i is NaN or infinite, or, for the body velocities,
+ * beyond EXEC_DIVERGED in magnitude: one integer comparison of the
+ * magnitude's bit pattern each (NaN and infinity lie above every finite
+ * bound), cheap where double is software.
+ */
+static uint32_t state_bad_bits(const double x[VESSEL_NSTATES]) {
+    uint32_t bits = 0u;
+    for (int i = 0; i < VESSEL_NSTATES; i++) {
+        const uint64_t mag = math_bits_f64(x[i]) & 0x7fffffffffffffffu;
+        const uint64_t lim = (i < VESSEL_X_M) ? math_bits_f64(EXEC_DIVERGED) : 0x7fefffffffffffffu;
+        bits |= (mag > lim) ? (1u << (unsigned)i) : 0u;
+    }
+    return bits;
+}
+
 static void make_report(exec *e) {
     exec_frame *r = &e->report;
     r->index = e->frame / e->slow_per_report;
@@ -615,17 +631,24 @@ static void make_report(exec *e) {
         r->m_index = e->acc_m / n;
         r->f_hz = e->acc_f / n;
         r->trip = (uint32_t)e->meas.trip;
+        /* One sum: a NaN or an infinity in any term makes it non-finite. The
+         * energy counters are made of these quantities, so they are finite too
+         * (exec_slow_step restores them with the state when this trips). */
+        const double sum = r->te_nm + r->i_rms_a + r->v_dc_v + r->i_batt_a + r->soc + r->m_index +
+                           r->f_hz;
+        e->nonfinite = math_isfinite_f64(sum) ? 0u : EXEC_NONFINITE_DRIVE;
     }
     r->faults = e->fault_mask;
     e->acc_te = e->acc_i_sq = e->acc_v_dc = e->acc_i_batt = e->acc_m = e->acc_f = 0.0;
     e->acc_n = 0u;
-    e->report_ready = true;
+    e->report_ready = (e->nonfinite == 0u);
 }
 
 void exec_slow_step(exec *e) {
     if (e->state != EXEC_RUNNING) {
         return;
     }
+    const exec_counters kept = e->count; /* restored by the guard below */
     if (e->cfg.plant == EXEC_PLANT_FULL) {
         battery_frame(e);
         /* The shaft speed over the frame just measured: its start, and the
@@ -649,13 +672,21 @@ void exec_slow_step(exec *e) {
     (void)vessel_step(&e->vessel, e->x, &e->cmd);
     e->frame++;
     e->count.slow++;
+    e->nonfinite = state_bad_bits(e->x);
     t = (double)e->frame * e->slow_s;
-    if (e->frame % e->slow_per_report == 0u) {
+    if (e->nonfinite == 0u && e->frame % e->slow_per_report == 0u) {
         /* Scenario commands and the zig-zag rule act on the reporting grid. */
         apply_commands(e, t);
         make_report(e);
     }
-    if (e->frame >= e->frames) {
+    /* The guard: a frame that makes a state or a reported value non-finite,
+     * or a velocity diverge (beyond EXEC_DIVERGED), ends the run. Nothing
+     * more is published and the counters are those of the frame before, so
+     * no NaN reaches an output; e->report keeps the last finite record. */
+    if (e->nonfinite != 0u) {
+        e->count = kept;
+        exec_end(e, EXEC_STOP_NONFINITE);
+    } else if (e->frame >= e->frames) {
         exec_end(e, EXEC_DONE);
     }
     e->slow_pending = false;
@@ -707,7 +738,14 @@ double exec_time_s(const exec *e) {
 }
 
 uint32_t exec_overruns(const exec *e) {
-    return e->count.overruns_medium + e->count.overruns_control + e->count.overruns_slow;
+    /* Saturating: the sum of three counters must not wrap to a small number. */
+    const uint32_t c[3] = {e->count.overruns_medium, e->count.overruns_control,
+                           e->count.overruns_slow};
+    uint32_t sum = 0u;
+    for (int i = 0; i < 3; i++) {
+        sum = (c[i] > UINT32_MAX - sum) ? UINT32_MAX : sum + c[i];
+    }
+    return sum;
 }
 
 uint64_t exec_fast_steps(const exec *e) {

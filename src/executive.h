@@ -109,8 +109,16 @@ typedef enum {
 typedef enum {
     EXEC_RUNNING = 0,
     EXEC_DONE,              /* the scenario's duration was reached */
-    EXEC_STOP_OVERRUN       /* a task missed its deadline */
+    EXEC_STOP_OVERRUN,      /* a task missed its deadline */
+    EXEC_STOP_NONFINITE     /* a state or a reported value became NaN or infinite, or a
+                             * velocity diverged (beyond EXEC_DIVERGED) */
 } exec_state;
+
+/* [m/s, rad/s] A body velocity beyond this has diverged: 250 times the top speed. */
+#define EXEC_DIVERGED 1e3
+
+/* exec.nonfinite: bit i for vessel state i, this bit for the drive's and battery's values. */
+#define EXEC_NONFINITE_DRIVE (1u << (unsigned)VESSEL_NSTATES)
 
 typedef struct {
     double e_batt_j;      /* [J] energy delivered by the battery at its terminals */
@@ -145,6 +153,8 @@ typedef struct {
     battery_params bat_params;
     battery bat;
     uint32_t frame;           /* slow frames done */
+    uint32_t nonfinite;       /* EXEC_STOP_NONFINITE: what became non-finite in frame `frame`;
+                               * report then holds the last finite record */
     size_t next_event;
     /* Faults injected by the scenario (exec_frame.faults, drive_faults). */
     uint32_t fault_mask;

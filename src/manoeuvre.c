@@ -76,10 +76,11 @@ static void turning_update(manoeuvre *m, double t, double x, double y, double ps
             }
         }
     }
-    if (dpsi >= 2.0 * PI && yaw_rate != 0.0) {
+    /* The floors keep both quotients finite (a yaw rate of 1e-6 rad/s is no turn). */
+    if (dpsi >= 2.0 * PI && abs_d(yaw_rate) > 1e-6) {
         m->r.has_steady = true;
         m->r.steady_diameter_m = 2.0 * speed / abs_d(yaw_rate);
-        m->r.speed_loss_pct = (m->speed0 > 0.0) ? 100.0 * (1.0 - speed / m->speed0) : 0.0;
+        m->r.speed_loss_pct = (m->speed0 > 1e-6) ? 100.0 * (1.0 - speed / m->speed0) : 0.0;
     }
     m->prev_x = x;
     m->prev_y = y;

@@ -57,11 +57,16 @@ static const value_rule command_rules[SCN_COMMAND_COUNT] = {
     {"", false, 1.0, 10.0, NULL},
 };
 
-/* Ranges of the initial states, in the order of vessel_state_names. */
+/*
+ * Ranges of the initial states, in the order of vessel_state_names. The
+ * velocities are those the vessel model is valid and its 0.1 s RK4 stable
+ * for (docs/vessel.md, section 6): surge and roll up to 5 (m/s, rad/s),
+ * sway, heave, pitch and yaw up to 3 (the top speed is 3.9 m/s).
+ */
 static const value_rule state_rules[VESSEL_NSTATES] = {
-    {"m/s", false, -20.0, 20.0, NULL},     {"m/s", false, -20.0, 20.0, NULL},
-    {"m/s", false, -20.0, 20.0, NULL},     {"rad/s", false, -10.0, 10.0, NULL},
-    {"rad/s", false, -10.0, 10.0, NULL},   {"rad/s", false, -10.0, 10.0, NULL},
+    {"m/s", false, -5.0, 5.0, NULL},       {"m/s", false, -3.0, 3.0, NULL},
+    {"m/s", false, -3.0, 3.0, NULL},       {"rad/s", false, -5.0, 5.0, NULL},
+    {"rad/s", false, -3.0, 3.0, NULL},     {"rad/s", false, -3.0, 3.0, NULL},
     {"m", false, -1e7, 1e7, NULL},         {"m", false, -1e7, 1e7, NULL},
     {"m", false, -1e4, 1e4, NULL},         {"rad", true, -3.1415926535897931, 3.1415926535897931, NULL},
     {"rad", true, -80.0 * DEG_TO_RAD, 80.0 * DEG_TO_RAD, NULL},

@@ -65,6 +65,11 @@ for v in linux-fixed linux-float; do
         "$BUILD/tools/csvdiff"
 done
 for v in linux-fixed linux-float; do
+    run "host $v property, 3000 random cases" pass "$BUILD/$v/property" 3000 1
+    run "host $v property through uuvsim, 100" pass sh tests/host/test_property.sh \
+        "$BUILD/$v/uuvsim" 100 1
+done
+for v in linux-fixed linux-float; do
     run "host $v fault injection" pass sh tests/host/test_faults.sh "$BUILD/$v/uuvsim"
     run "host $v soak, 600 s (make soak: 3600 s)" pass sh tests/host/test_soak.sh \
         "$BUILD/$v/uuvsim" 600

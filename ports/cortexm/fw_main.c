@@ -339,7 +339,8 @@ __attribute__((noinline)) static int fw_finish(void) {
     const exec *e = &fw_exec;
     uint32_t of = hal_cm_fast_overruns();
     bool done = e->state == EXEC_DONE && of == 0u;
-    int status = done ? 0 : 1;
+    bool nonfinite = e->state == EXEC_STOP_NONFINITE && of == 0u;
+    int status = done ? 0 : (nonfinite ? 3 : 1);
     tlm_end end = {(uint8_t)e->state, (uint8_t)status, exec_fast_steps(e), e->count.medium,
                    e->count.control, e->count.slow, of, e->count.overruns_medium,
                    e->count.overruns_control, e->count.overruns_slow, e->count.saturations, e->count.e_batt_j,
@@ -356,7 +357,9 @@ __attribute__((noinline)) static int fw_finish(void) {
               (unsigned)e->count.saturations);
     fmt_print("stack: %u of %u bytes used\n", (unsigned)end.stack_used_bytes,
               (unsigned)((uintptr_t)__stack_top__ - (uintptr_t)__stack_bottom__));
-    if (!done) {
+    if (nonfinite) {
+        fmt_print("stopped early: a state became non-finite or diverged\n");
+    } else if (!done) {
         fmt_print("stopped early: a %s overran its frame\n",
                   of != 0u                            ? "fast tick"
                   : e->count.overruns_medium != 0u    ? "motor task"

@@ -10,11 +10,13 @@
  *                 [--insn COUNTS.txt --shift N] [--scenario NAME]
  *
  * Exit status: 0 for a complete, intact stream (the run's own outcome is in
- * the summary); 2 for bad input: an unreadable file, a truncated or corrupt
+ * the summary), 3 when that run stopped at its guard (a non-finite state);
+ * 2 for bad input: an unreadable file, a truncated or corrupt
  * frame, frames out of order or missing, a bad option. Output files are
  * written whole or not at all.
  */
 #include <errno.h>
+#include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -134,6 +136,21 @@ static bool frame_in_order(const char *path, size_t at, unsigned long k, const t
     return true;
 }
 
+static bool record_finite(const exec_frame *r) {
+    const double v[7] = {r->te_nm, r->i_rms_a, r->v_dc_v, r->i_batt_a, r->soc, r->m_index, r->f_hz};
+    bool ok = isfinite(r->t_s);
+    for (int i = 0; i < VESSEL_NSTATES; i++) {
+        ok = ok && isfinite(r->x[i]);
+    }
+    for (int i = 0; i < EXEC_NCMD; i++) {
+        ok = ok && isfinite(r->cmd[i]);
+    }
+    for (int i = 0; i < 7; i++) {
+        ok = ok && isfinite(v[i]);
+    }
+    return ok;
+}
+
 /* Decodes every frame, writing the records to csv (may be NULL). */
 static bool decode(const char *path, const unsigned char *buf, size_t n, FILE *csv, stream *s) {
     size_t at = 0;
@@ -163,12 +180,19 @@ static bool decode(const char *path, const unsigned char *buf, size_t n, FILE *c
             if (s->last.index != s->records) {
                 return stream_error(path, at, k, "record index out of order");
             }
+            if (!record_finite(&s->last)) {
+                return stream_error(path, at, k, "a record holds a NaN or an infinite value "
+                                                 "(the firmware's guard never sends one)");
+            }
             s->records++;
             if (csv != NULL) {
                 csv_row(csv, &s->last, full);
             }
         } else {
             tlm_decode_end(&f, &s->end);
+            if (!isfinite(s->end.e_batt_j) || !isfinite(s->end.e_mech_j)) {
+                return stream_error(path, at, k, "the end frame's energies are not finite");
+            }
             ended = true;
         }
         at += f.frame_len;
@@ -277,7 +301,9 @@ static const char *state_name(const tlm_end *e) {
     if (e->overruns_fast + e->overruns_medium + e->overruns_control + e->overruns_slow > 0u) {
         return "overrun";
     }
-    return e->state == EXEC_DONE ? "done" : "stopped";
+    return e->state == EXEC_DONE           ? "done"
+           : e->state == EXEC_STOP_NONFINITE ? "non-finite"
+                                              : "stopped";
 }
 
 static void json_final(FILE *f, const stream *s) {
@@ -356,5 +382,11 @@ int main(int argc, char **argv) {
     }
     ok = out_close(&csv);
     ok = out_close(&json) && ok;
+    if (ok && s.end.state == EXEC_STOP_NONFINITE) {
+        fprintf(stderr, "%s: %s: the run stopped: a state became non-finite in slow frame %llu; "
+                        "the last record is at t = %.9g s\n",
+                prog, o.in_path, (unsigned long long)s.end.slow + 1u, s.last.t_s);
+        return 3;
+    }
     return ok ? 0 : 2;
 }

@@ -4,7 +4,8 @@
  * telemetry and trace files and prints a summary, as text or JSON.
  *
  * Exit status: 0 success; 2 bad input (options, scenario, files); 1 the
- * run stopped early (an overrun) or an internal failure.
+ * run stopped early (an overrun) or an internal failure; 3 the run stopped
+ * because a state became non-finite (the executive's guard).
  */
 #include <errno.h>
 #include <math.h>
@@ -142,7 +143,7 @@ static void print_json(FILE *f_out, const run_result *r) {
         fprintf(f_out, "\"%s\": %.10g, ", vessel_state_names[i], f->x[i]);
     }
     fprintf(f_out, "\"n_rpm\": %.10g, \"soc\": %.10g}", f->x[VESSEL_N_RPM],
-           e->cfg.plant == EXEC_PLANT_FULL ? e->bat.soc : 1.0);
+           e->cfg.plant == EXEC_PLANT_FULL ? f->soc : 1.0);
     if (m->turn_executed && !m->zigzag) {
         /* Only the figures the turn reached. */
         fprintf(f_out, ",\n  \"turning_circle\": {\"executed\": true");
@@ -208,7 +209,7 @@ static void print_text(const run_result *r) {
                (unsigned long long)e->count.control, (unsigned long long)e->count.slow,
                exec_overruns(e), e->count.saturations);
         printf("battery: %.1f Wh drawn, state of charge %.4f, DC link %.1f V\n",
-               e->count.e_batt_j / 3600.0, e->bat.soc, f->v_dc_v);
+               e->count.e_batt_j / 3600.0, f->soc, f->v_dc_v);
         if (e->fault_mask != 0u || f->trip != 0u) {
             printf("faults injected: 0x%x; protection: %s\n", (unsigned)e->fault_mask,
                    f->trip != 0u ? out_trip_names[f->trip < OUT_TRIP_NAMES ? f->trip : 0u]
@@ -257,6 +258,29 @@ static void print_text(const run_result *r) {
     if (e->state == EXEC_STOP_OVERRUN) {
         printf("stopped early: a task overran its frame\n");
     }
+}
+
+/*
+ * The guard's report: when and what became non-finite, and the state of the
+ * last record (finite).
+ */
+static void print_nonfinite(const exec *e) {
+    const double t = (double)e->frame * e->slow_s;
+    fprintf(stderr, "uuvsim: at t = %.9g s the run stopped: non-finite or diverged (beyond %g)",
+            t, EXEC_DIVERGED);
+    for (int i = 0; i < VESSEL_NSTATES; i++) {
+        if ((e->nonfinite & (1u << i)) != 0u) {
+            fprintf(stderr, " %s", vessel_state_names[i]);
+        }
+    }
+    if ((e->nonfinite & EXEC_NONFINITE_DRIVE) != 0u) {
+        fprintf(stderr, " drive or battery value");
+    }
+    fprintf(stderr, "\nuuvsim: the state at t = %.9g s:", e->report.t_s);
+    for (int i = 0; i < VESSEL_NSTATES; i++) {
+        fprintf(stderr, " %s=%.9g", vessel_state_names[i], e->report.x[i]);
+    }
+    fprintf(stderr, "\n");
 }
 
 /* Sleeps until the wall clock reaches the simulated time t_s (from w0). */
@@ -390,6 +414,10 @@ static int run(const cli_options *o) {
         print_json(stdout, &r);
     } else if (!o->quiet) {
         print_text(&r);
+    }
+    if (e.state == EXEC_STOP_NONFINITE) {
+        print_nonfinite(&e);
+        return 3;
     }
     return e.state == EXEC_DONE ? 0 : 1;
 }

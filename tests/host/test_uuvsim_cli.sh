@@ -157,6 +157,55 @@ turn_ends() {
 }
 check "turning circle: a turn that ends before the run reports no steady diameter" turn_ends
 
+# Finite results (docs/vessel.md, four quadrants): astern with the paper law and the
+# initial states that once diverged end finite, with exit 0 and no nan or inf in any
+# output; the summary is valid JSON.
+no_nonfinite() { ! grep -Eiq '(^|[^a-z_])-?(nan|inf)' "$@"; }
+finite_run() { # scenario text, then options
+    printf "$1" >"$tmp/fin.scn" && shift &&
+        "$uuvsim" --scenario "$tmp/fin.scn" --csv "$tmp/fin.csv" --summary "$tmp/fin.json" \
+            "$@" >"$tmp/fin.txt" &&
+        no_nonfinite "$tmp/fin.csv" "$tmp/fin.json" "$tmp/fin.txt" &&
+        python3 -c 'import json,sys; json.load(open(sys.argv[1]))' "$tmp/fin.json"
+}
+astern() {
+    finite_run 'duration 60\nat 0 n_rpm=-500\n' &&
+        grep -Eq 'final: u -1\.2[0-9]* m/s' "$tmp/fin.txt"
+}
+check "astern: 60 s at -500 rpm (paper, full plant) stays finite, u -> -1.21 m/s" astern
+check "astern: 30 s at -1500 rpm (paper, vessel) stays finite" \
+    finite_run 'duration 30\nat 0 n_rpm=-1500\n' --plant vessel
+check "init q_radps=1 (full plant, 10 s) stays finite" finite_run 'duration 10\ninit q_radps=1\n'
+check "init q_radps=0.5 (full plant, 10 s) stays finite" finite_run 'duration 10\ninit q_radps=0.5\n'
+coasting_astern() {
+    finite_run 'duration 10\ninit u_mps=-3\n' &&
+        grep -Eq 'final: u -2\.[0-9]+ m/s, .*heading 0\.0 deg' "$tmp/fin.txt"
+}
+check "init u_mps=-3 (full plant, 10 s): coasts astern (u -2.35 m/s), heading kept" \
+    coasting_astern
+check "init u_mps=-3 with a 0.5 s slow frame (vessel) stays finite" \
+    finite_run 'duration 30\ninit u_mps=-3 q_radps=2\n' --plant vessel --slow-frame 500ms
+printf 'duration 10\ninit w_mps=20\n' >"$tmp/w20.scn"
+expect_error "error: an initial heave speed beyond the model's range" \
+    "w20.scn:2: field 'w_mps': value 20 m/s out of range \\[-3, 3\\]" \
+    "$uuvsim" --scenario "$tmp/w20.scn" --csv "$tmp/bad.csv"
+
+# The guard: under mss a vehicle moving astern accelerates without bound; the run
+# stops with exit 3, the time, what diverged and the last state, and no output holds
+# a nan or an inf.
+guard() {
+    printf 'duration 60\ninit u_mps=-5\n' >"$tmp/g.scn"
+    "$uuvsim" --plant vessel --propulsion mss --scenario "$tmp/g.scn" --csv "$tmp/g.csv" \
+        --summary "$tmp/g.json" >"$tmp/g.txt" 2>"$tmp/g.err"
+    [ $? -eq 3 ] &&
+        grep -Eq '^uuvsim: at t = [0-9.]+ s the run stopped: non-finite or diverged .*u_mps' \
+            "$tmp/g.err" &&
+        grep -Eq '^uuvsim: the state at t = [0-9.]+ s: u_mps=' "$tmp/g.err" &&
+        no_nonfinite "$tmp/g.csv" "$tmp/g.json" "$tmp/g.txt" "$tmp/g.err" &&
+        python3 -c 'import json,sys; json.load(open(sys.argv[1]))' "$tmp/g.json"
+}
+check "guard: a diverging run (mss astern) stops with exit 3, time and state, no nan" guard
+
 printf 'duration 10\nat 1 rudder=abc\n' >"$tmp/bad1.scn"
 expect_error "error: malformed value names file, line and field" \
     "bad1.scn:2: field 'rudder'" "$uuvsim" --scenario "$tmp/bad1.scn" --csv "$tmp/bad.csv"

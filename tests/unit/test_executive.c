@@ -237,6 +237,46 @@ static void test_scenario_check(void) {
     UT_CHECK(ut_text_equal(err.field, "n_rpm") && err.message[0] != '\0');
 }
 
+/*
+ * The guard: under `mss` a vehicle moving astern accelerates without bound
+ * (the reference law's hull drag r2 C_d0 u^2 pushes astern, docs/vessel.md);
+ * the run stops at the first non-finite state with EXEC_STOP_NONFINITE,
+ * names it, keeps the last finite record and publishes no record after it.
+ */
+static void test_guard(void) {
+    static scenario s;
+    static exec g;
+    const char *text = "duration 60\ninit u_mps=-5\n";
+    scenario_error err;
+    UT_CHECK(scenario_parse(&s, text, ut_text_len(text), &err));
+    exec_config cfg;
+    exec_config_default(&cfg);
+    cfg.plant = EXEC_PLANT_VESSEL;
+    cfg.propulsion = VESSEL_PROP_MSS;
+    UT_CHECK(exec_init(&g, &cfg, &s) == EXEC_OK);
+    exec_frame f;
+    bool finite = true;
+    uint32_t records = 0u;
+    while (g.state == EXEC_RUNNING) {
+        exec_desk_step(&g);
+        if (exec_report_take(&g, &f)) {
+            records++;
+            for (int i = 0; i < VESSEL_NSTATES; i++) {
+                finite = finite && math_isfinite_f64(f.x[i]);
+            }
+        }
+    }
+    UT_EQ_INT(g.state, EXEC_STOP_NONFINITE);
+    UT_CHECK((g.nonfinite & 1u) != 0u && (g.nonfinite & EXEC_NONFINITE_DRIVE) == 0u);
+    UT_CHECK(finite && records + 1u == g.frame && g.frame < 600u);
+    for (int i = 0; i < VESSEL_NSTATES; i++) {
+        finite = finite && math_isfinite_f64(g.report.x[i]) && f.x[i] == g.report.x[i];
+    }
+    UT_CHECK(finite && math_fabs_f64(g.report.x[VESSEL_U_MPS]) <= EXEC_DIVERGED);
+    ut_info("stopped in frame %u (t = %.1f s), %u records, all finite", (unsigned)g.frame,
+            (double)g.frame * g.slow_s, (unsigned)records);
+}
+
 void suite_executive(void) {
     const char *text = "duration 2\nat 0 n_rpm=1000\n";
     scenario_error err;
@@ -302,6 +342,10 @@ void suite_executive(void) {
     UT_TEST("the scenario check: the vessel plant refuses the drive's faults, the averaged "
             "layer the four that end in blocked gates, each with its line and name");
     test_scenario_check();
+
+    UT_TEST("the guard: a state that becomes non-finite stops the run (EXEC_STOP_NONFINITE) "
+            "with the last finite record kept and no record after it");
+    test_guard();
 
     UT_TEST("determinism: the same run twice gives the same bits");
     static step_result b;

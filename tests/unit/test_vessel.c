@@ -402,6 +402,63 @@ static void test_no_nan(void) {
             x[VESSEL_U_MPS], x[VESSEL_Z_M], x[VESSEL_THETA_RAD], x[VESSEL_DELTA_R_RAD]);
 }
 
+/*
+ * Four-quadrant operation (docs/vessel.md, section 3): astern at full
+ * reverse under `paper` reaches minus the forward steady speed and damps
+ * a pitch disturbance; with only the surge speed, the fins and no shaft
+ * speed, the body accelerations are odd in u (fin lift and drag reverse
+ * with the flow); a frame longer than 0.1 s is integrated in equal steps.
+ */
+static void test_four_quadrant(void) {
+    double x[VESSEL_NSTATES];
+    UT_TEST("astern (`paper`, -1500 rpm, 60 s from rest with a 0.3 rad/s pitch rate): "
+            "finite, u -> -3.881 m/s (minus the forward steady speed), the pitch rate damped below 0.01 rad/s");
+    vessel_model *m = model_with(&vm_a, VESSEL_PROP_PAPER, VESSEL_SHAFT_LAG);
+    const vessel_cmd rev = {0.0, 0.0, 0.0, 0.0, -1500.0, 0.0, 0.0, 0.0};
+    zero_state(x);
+    x[VESSEL_Q_RADPS] = 0.3;
+    UT_CHECK(run_finite(m, x, &rev, 600));
+    UT_NEAR(x[VESSEL_U_MPS], -3.8806, 2e-3);
+    UT_CHECK(math_fabs_f64(x[VESSEL_Q_RADPS]) < 0.01 && math_fabs_f64(x[VESSEL_THETA_RAD]) < 0.3);
+    ut_info("after 60 s: u = %.4f m/s, q = %.2e rad/s, theta = %.4f rad", x[VESSEL_U_MPS],
+            x[VESSEL_Q_RADPS], x[VESSEL_THETA_RAD]);
+
+    UT_TEST("four quadrants: with u, the fins and n = 0 only, du..dr at -u are minus those at u");
+    double xa[VESSEL_NSTATES], da[VESSEL_NSTATES], db[VESSEL_NSTATES];
+    const vessel_cmd fins = {0.1, -0.15, 0.05, 0.1, 0.0, 0.0, 0.0, 0.0};
+    zero_state(xa);
+    xa[VESSEL_U_MPS] = 2.0;
+    xa[VESSEL_DELTA_R_RAD] = 0.1;
+    xa[VESSEL_DELTA_S_RAD] = -0.15;
+    xa[VESSEL_DELTA_BP_RAD] = 0.05;
+    xa[VESSEL_DELTA_BS_RAD] = 0.1;
+    (void)vessel_derivatives(m, xa, &fins, da);
+    xa[VESSEL_U_MPS] = -2.0;
+    (void)vessel_derivatives(m, xa, &fins, db);
+    bool odd = true;
+    for (int i = VESSEL_U_MPS; i <= VESSEL_R_RADPS; i++) {
+        odd = odd && math_fabs_f64(da[i] + db[i]) <= 1e-15 * math_fabs_f64(da[i]) + 1e-300;
+    }
+    UT_CHECK(odd && da[VESSEL_R_RADPS] != 0.0 && da[VESSEL_Q_RADPS] != 0.0);
+
+    UT_TEST("a 0.5 s frame is 5 RK4 steps of 0.1 s: the bits of five 0.1 s frames");
+    vessel_config cfg;
+    vessel_config_default(&cfg);
+    cfg.step_s = 0.5;
+    UT_CHECK(vessel_init(&vm_b, &cfg) == VESSEL_OK);
+    UT_EQ_INT(vm_b.substeps, 5);
+    const vessel_cmd cmd = {0.1, -0.05, 0.0, 0.0, 1200.0, 0.0, 0.0, 0.0};
+    cruise_state(x);
+    copy_state(xa, x);
+    (void)vessel_step(&vm_b, x, &cmd);
+    run(model_with(&vm_a, VESSEL_PROP_PAPER, VESSEL_SHAFT_LAG), xa, &cmd, 5);
+    bool same = true;
+    for (int i = 0; i < VESSEL_NSTATES; i++) {
+        same = same && (math_bits_f64(x[i]) == math_bits_f64(xa[i]));
+    }
+    UT_CHECK(same);
+}
+
 static void test_init(void) {
     UT_TEST("init: refuses NULL, a bad frame, an unknown law or shaft source, a NaN "
             "coefficient, a non-physical field and a singular mass matrix");
@@ -702,6 +759,7 @@ void suite_vessel(void) {
     test_signs();
     test_guards();
     test_no_nan();
+    test_four_quadrant();
     test_init();
     test_init_fields();
     test_counters_and_pitch();

@@ -82,6 +82,11 @@ static void vessel_derive(vessel_model *m) {
     m->ct_scale = 0.008 * len * len / 2.0;
     m->eps_den = math_sqrt_f64(m->ct_scale + 1.0) - 1.0 + 1e-10;
     m->actuator_rate_hz = 1.0 / p->actuator_tau_s;
+    /* ceil(step_s / VESSEL_RK4_MAX_S); the 1e-6 keeps a frame of 0.1 s or
+     * 0.2 s (in binary slightly more) one or two steps. step_s <= 1. */
+    const double steps = m->step_s / VESSEL_RK4_MAX_S - 1e-6;
+    m->substeps = (uint32_t)steps + 1u;
+    m->sub_s = m->step_s / (double)m->substeps;
 }
 
 vessel_status vessel_init(vessel_model *m, const vessel_config *cfg) {
@@ -153,13 +158,11 @@ static void vessel_count(vessel_model *m, unsigned ev) {
     }
 }
 
-unsigned vessel_step(vessel_model *m, double x[VESSEL_NSTATES], const vessel_cmd *cmd) {
+/* One classical RK4 step of length h. */
+static unsigned vessel_rk4(const vessel_model *m, double x[VESSEL_NSTATES], const vessel_cmd *cmd,
+                           double h) {
     double k1[VESSEL_NSTATES], k2[VESSEL_NSTATES], k3[VESSEL_NSTATES], k4[VESSEL_NSTATES];
     double xt[VESSEL_NSTATES];
-    const double h = m->step_s;
-    if (m->shaft == VESSEL_SHAFT_INPUT) {
-        x[VESSEL_N_RPM] = cmd->shaft_rpm;
-    }
     unsigned ev = vessel_derivatives(m, x, cmd, k1);
     for (int i = 0; i < VESSEL_NSTATES; i++) {
         xt[i] = x[i] + h / 2.0 * k1[i];
@@ -175,6 +178,17 @@ unsigned vessel_step(vessel_model *m, double x[VESSEL_NSTATES], const vessel_cmd
     ev |= vessel_derivatives(m, xt, cmd, k4);
     for (int i = 0; i < VESSEL_NSTATES; i++) {
         x[i] += h / 6.0 * (k1[i] + 2.0 * k2[i] + 2.0 * k3[i] + k4[i]);
+    }
+    return ev;
+}
+
+unsigned vessel_step(vessel_model *m, double x[VESSEL_NSTATES], const vessel_cmd *cmd) {
+    unsigned ev = 0u;
+    if (m->shaft == VESSEL_SHAFT_INPUT) {
+        x[VESSEL_N_RPM] = cmd->shaft_rpm;
+    }
+    for (uint32_t k = 0u; k < m->substeps; k++) {
+        ev |= vessel_rk4(m, x, cmd, m->sub_s);
     }
     vessel_count(m, ev);
     return ev;

@@ -67,7 +67,7 @@ static double vessel_control_x(const vessel_model *m, const double x[VESSEL_NSTA
     const double q = x[VESSEL_Q_RADPS], r = x[VESSEL_R_RADPS];
     const double dr = a->rudder_rad, ds = a->stern_rad;
     const double db = a->bow_port_rad + a->bow_stbd_rad;
-    const double uu = u * u;
+    const double uu = u * math_fabs_f64(u); /* signed: fin drag opposes the flow */
     return m->r3 * (c->r_dr * u * r * dr + (c->q_ds * ds + c->q_db2 * db) * u * q) +
            m->r2 * (c->v_dr * u * v * dr + (c->w_ds * ds + c->w_db2 * db) * u * w +
                     (c->ds_ds * ds * ds + c->dr_dr * dr * dr) * uu) +
@@ -82,20 +82,22 @@ unsigned vessel_tau_control(const vessel_model *m, const double x[VESSEL_NSTATES
     const double p = x[VESSEL_P_RADPS], q = x[VESSEL_Q_RADPS];
     const double dr = a->rudder_rad, ds = a->stern_rad;
     const double db = a->bow_port_rad + a->bow_stbd_rad;
+    const double au = math_fabs_f64(u);
     const double uu = u * u;
+    const double ua = u * au; /* signed dynamic pressure: fin lift reverses astern */
     vessel_prop_terms pt;
     const unsigned ev = vessel_propulsion_eval(m, u, a->shaft_radps, &pt);
     const double eps = pt.eps;
 
     tau[0] += vessel_control_x(m, x, a, &pt);
-    tau[1] += m->r2 * pa->y.dr * uu * dr;
-    tau[2] += m->r2 * uu * (pa->z.ds * ds + pa->z.db2 * db) + m->r3 * pa->z.q_n * u * q * eps +
-              m->r2 * (pa->z.w_n * u * w + pa->z.ds_n * uu * ds) * eps;
-    tau[3] += m->r4 * pa->k.p_n * u * p * eps + m->r3 * pa->k.prop * uu * u +
-              m->r3 * uu * pa->k.db2 * db;
-    tau[4] += m->r4 * pa->m.q_n * u * q * eps +
-              m->r3 * (pa->m.w_n * u * w + pa->m.ds_n * uu * ds) * eps +
-              m->r3 * uu * (pa->m.ds * ds + pa->m.db2 * db);
-    tau[5] += m->r3 * pa->n.prop * uu + m->r3 * pa->n.dr * uu * dr;
+    tau[1] += m->r2 * pa->y.dr * ua * dr;
+    tau[2] += m->r2 * ua * (pa->z.ds * ds + pa->z.db2 * db) + m->r3 * pa->z.q_n * u * q * eps +
+              m->r2 * (pa->z.w_n * au * w + pa->z.ds_n * ua * ds) * eps;
+    tau[3] += m->r4 * pa->k.p_n * au * p * eps + m->r3 * pa->k.prop * uu * u +
+              m->r3 * ua * pa->k.db2 * db;
+    tau[4] += m->r4 * pa->m.q_n * au * q * eps +
+              m->r3 * (pa->m.w_n * u * w + pa->m.ds_n * ua * ds) * eps +
+              m->r3 * ua * (pa->m.ds * ds + pa->m.db2 * db);
+    tau[5] += m->r3 * pa->n.prop * uu + m->r3 * pa->n.dr * ua * dr;
     return ev;
 }

@@ -19,6 +19,7 @@ static void vessel_hydro_xy(const vessel_model *m, const double x[VESSEL_NSTATES
     const vessel_params *pa = &m->params;
     const double u = x[VESSEL_U_MPS], v = x[VESSEL_V_MPS], w = x[VESSEL_W_MPS];
     const double p = x[VESSEL_P_RADPS], q = x[VESSEL_Q_RADPS], r = x[VESSEL_R_RADPS];
+    const double au = math_fabs_f64(u); /* the damping terms' flow speed, see below */
     const double xg = pa->r_g_m[0], yg = pa->r_g_m[1], zg = pa->r_g_m[2];
     const double mp = m->m_prime;
     const double len = pa->length_m;
@@ -31,8 +32,8 @@ static void vessel_hydro_xy(const vessel_model *m, const double x[VESSEL_NSTATES
               m->r4 * ((mp * xg / len + cx->qq) * q * q + (mp * xg / len + cx->rr) * r * r -
                        (mp * yg / len) * p * q + (cx->pr - mp * zg / len) * p * r +
                        cx->pp * p * p);
-    tau[1] += m->r2 * (cy->v * u * v + cy->vw * v * w) +
-              m->r3 * (cy->p * u * p + cy->r * u * r + cy->vq * v * q + cy->wp * w * p +
+    tau[1] += m->r2 * (cy->v * au * v + cy->vw * v * w) +
+              m->r3 * (cy->p * au * p + cy->r * u * r + cy->vq * v * q + cy->wp * w * p +
                        cy->wr * w * r) +
               m->r4 * (cy->pq * p * q + cy->qr * q * r) -
               m->mass_kg * (u * r - w * p + xg * p * q - yg * (p * p + r * r) + zg * q * r);
@@ -44,17 +45,18 @@ static void vessel_hydro_zk(const vessel_model *m, const double x[VESSEL_NSTATES
     const vessel_params *pa = &m->params;
     const double u = x[VESSEL_U_MPS], v = x[VESSEL_V_MPS], w = x[VESSEL_W_MPS];
     const double p = x[VESSEL_P_RADPS], q = x[VESSEL_Q_RADPS], r = x[VESSEL_R_RADPS];
+    const double au = math_fabs_f64(u); /* the damping terms' flow speed, see below */
     const double xg = pa->r_g_m[0], yg = pa->r_g_m[1], zg = pa->r_g_m[2];
     const vessel_coeffs_z *cz = &pa->z;
     const vessel_coeffs_k *ck = &pa->k;
 
     /* Corrected sign: the centripetal term is subtracted (MSS adds it). */
-    tau[2] += m->r2 * (cz->w * u * w + cz->vv * v * v) +
+    tau[2] += m->r2 * (cz->w * au * w + cz->vv * v * v) +
               m->r3 * (cz->q * u * q + cz->vp * v * p + cz->vr * v * r) +
               m->r4 * (cz->pp * p * p + cz->pr * p * r + cz->rr * r * r) -
               m->mass_kg * (v * p - u * q + xg * p * r + yg * q * r - zg * (p * p + q * q));
-    tau[3] += m->r3 * (ck->v * u * v + ck->vw * v * w) +
-              m->r4 * (ck->p * u * p + ck->r * u * r + ck->vq * v * q + ck->wp * w * p +
+    tau[3] += m->r3 * (ck->v * au * v + ck->vw * v * w) +
+              m->r4 * (ck->p * au * p + ck->r * u * r + ck->vq * v * q + ck->wp * w * p +
                        ck->wr * w * r) +
               m->r5 * (ck->pq * p * q + ck->qr * q * r) +
               (pa->iy_kgm2 - pa->iz_kgm2) * q * r - pa->ixy_kgm2 * p * r -
@@ -68,19 +70,20 @@ static void vessel_hydro_mn(const vessel_model *m, const double x[VESSEL_NSTATES
     const vessel_params *pa = &m->params;
     const double u = x[VESSEL_U_MPS], v = x[VESSEL_V_MPS], w = x[VESSEL_W_MPS];
     const double p = x[VESSEL_P_RADPS], q = x[VESSEL_Q_RADPS], r = x[VESSEL_R_RADPS];
+    const double au = math_fabs_f64(u); /* the damping terms' flow speed, see below */
     const double xg = pa->r_g_m[0], yg = pa->r_g_m[1], zg = pa->r_g_m[2];
     const vessel_coeffs_m *cm = &pa->m;
     const vessel_coeffs_n *cn = &pa->n;
 
     /* Corrected sign: +(I_z - I_x) p r (MSS subtracts it). */
     tau[4] += m->r3 * (cm->uw * u * w + cm->vv * v * v) +
-              m->r4 * (cm->uq * u * q + cm->vp * v * p + cm->vr * v * r) +
+              m->r4 * (cm->uq * au * q + cm->vp * v * p + cm->vr * v * r) +
               m->r5 * (cm->pp * p * p + cm->pr * p * r + cm->rr * r * r) +
               (pa->iz_kgm2 - pa->ix_kgm2) * p * r + pa->ixy_kgm2 * q * r -
               pa->iyz_kgm2 * p * q - pa->ixz_kgm2 * (p * p - r * r) +
               m->mass_kg * (xg * (v * p - u * q) - zg * (w * q - v * r));
     tau[5] += m->r3 * (cn->v * u * v + cn->vw * v * w) +
-              m->r4 * (cn->p * u * p + cn->r * u * r + cn->vq * v * q + cn->wp * w * p +
+              m->r4 * (cn->p * u * p + cn->r * au * r + cn->vq * v * q + cn->wp * w * p +
                        cn->wr * w * r) +
               m->r5 * (cn->pq * p * q + cn->qr * q * r) +
               (pa->ix_kgm2 - pa->iy_kgm2) * p * q + pa->ixy_kgm2 * (p * p - q * q) +
