@@ -117,8 +117,9 @@ typedef enum {
 /* [m/s, rad/s] A body velocity beyond this has diverged: 250 times the top speed. */
 #define EXEC_DIVERGED 1e3
 
-/* exec.nonfinite: bit i for vessel state i, this bit for the drive's and battery's values. */
-#define EXEC_NONFINITE_DRIVE (1u << (unsigned)VESSEL_NSTATES)
+/* exec.nonfinite: bit i for vessel state i; this bit, 1 << VESSEL_NSTATES, for the
+ * drive's and battery's values. */
+#define EXEC_NONFINITE_DRIVE 0x20000u
 
 typedef struct {
     double e_batt_j;      /* [J] energy delivered by the battery at its terminals */

@@ -267,6 +267,7 @@ static void test_guard(void) {
         }
     }
     UT_EQ_INT(g.state, EXEC_STOP_NONFINITE);
+    UT_EQ_INT(EXEC_NONFINITE_DRIVE, 1u << VESSEL_NSTATES);
     UT_CHECK((g.nonfinite & 1u) != 0u && (g.nonfinite & EXEC_NONFINITE_DRIVE) == 0u);
     UT_CHECK(finite && records + 1u == g.frame && g.frame < 600u);
     for (int i = 0; i < VESSEL_NSTATES; i++) {
