@@ -7,7 +7,8 @@
  * Each case is a random scenario, written as text and read by the scenario
  * parser: every one of the 17 vessel states drawn inside the range the
  * parser accepts, two random sets of commands (fins, shaft speed,
- * buoyancy) at t = 0 and half-way, a random propulsion law; the vessel
+ * buoyancy, a third of them with heading and depth set points for the
+ * autopilots) at t = 0 and half-way, a random propulsion law; the vessel
  * plant for up to MAX_DURATION_S (default 20 s), one case in 16 with the
  * full plant for 0.3 s. The parser must accept it; the run must end with
  * EXEC_DONE, or, under `mss` only, at the guard (EXEC_STOP_NONFINITE): the
@@ -40,14 +41,16 @@ static const double state_lim[VESSEL_NSTATES] = {
     5.0,  3.0,  3.0,   5.0,    3.0,    3.0,    1000.0, 1000.0, 100.0,
     3.14, 1.39, 6.283, 0.785, 0.785, 0.785, 0.785, 1500.0};
 
-static size_t make_case(char *buf, size_t cap, double dur) {
+static size_t make_case(char *buf, size_t cap, double dur, bool full) {
     size_t n = (size_t)snprintf(buf, cap, "duration %.1f\ninit", dur);
     for (int i = 0; i < VESSEL_NSTATES; i++) {
         double v = rnd() * state_lim[i];
         if (i == VESSEL_Z_M) {
             v = fabs(v);
         }
-        n += (size_t)snprintf(buf + n, cap - n, " %s=%.6g", vessel_state_names[i], v);
+        if (i != VESSEL_N_RPM || !full) { /* the full plant's motor starts at rest */
+            n += (size_t)snprintf(buf + n, cap - n, " %s=%.6g", vessel_state_names[i], v);
+        }
     }
     for (int j = 0; j < 2; j++) {
         n += (size_t)snprintf(buf + n, cap - n,
@@ -55,6 +58,10 @@ static size_t make_case(char *buf, size_t cap, double dur) {
                               "n_rpm=%.1f buoyancy=%.1f",
                               j * floor(dur * 5.0) / 10.0, rnd() * 0.785, rnd() * 0.785,
                               rnd() * 0.785, rnd() * 0.785, rnd() * 1500.0, rnd() * 5340.0);
+        if (rnd() > 0.3) { /* the autopilots, in a third of the command sets */
+            n += (size_t)snprintf(buf + n, cap - n, " heading=%.4f depth=%.2f", rnd() * 6.28,
+                                  (rnd() + 1.0) * 100.0);
+        }
     }
     n += (size_t)snprintf(buf + n, cap - n, "\n");
     return n;
@@ -113,7 +120,7 @@ int main(int argc, char **argv) {
         cfg.propulsion = (rnd() < 0.0) ? VESSEL_PROP_PAPER : VESSEL_PROP_MSS;
         const double dur = full ? 0.3 : 0.1 * floor(1.0 + (rnd() + 1.0) * 5.0 * maxdur);
         static char text[2048];
-        size_t len = make_case(text, sizeof text, dur);
+        size_t len = make_case(text, sizeof text, dur, full);
         scenario_error err;
         const char *why = NULL;
         if (!scenario_parse(&scn, text, len, &err)) {

@@ -2,7 +2,8 @@
 # Property test (docs/reliability.md): no output of uuvsim is ever NaN or
 # infinite, over random in-range inputs.
 #   test_property.sh UUVSIM CASES SEED [MAX_DURATION_S]
-# Each case is a random scenario: every vessel state drawn inside the range
+# Each case is a random scenario: every vessel state (the full plant's motor
+# starts at rest: no n_rpm there) drawn inside the range
 # the scenario reader accepts (src/scenario.c), two random sets of commands
 # (fins, shaft speed, buoyancy) at t = 0 and half-way, a random propulsion
 # law, mostly the vessel plant (up to MAX_DURATION_S, default 20 s) and one
@@ -33,7 +34,7 @@ awk -v n="$cases" -v seed="$seed" -v maxdur="$maxdur" 'BEGIN {
         for (i = 1; i <= 17; i++) {
             v = (2 * rand() - 1) * lim[i];
             if (i == 9) v = (v < 0) ? -v : v;
-            init = init sprintf(" %s=%.6g", name[i], v);
+            if (i < 17 || !full) init = init sprintf(" %s=%.6g", name[i], v);
         }
         s = sprintf("duration %.1f|%s", dur, init);
         for (j = 0; j < 2; j++) {

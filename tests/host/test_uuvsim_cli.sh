@@ -168,20 +168,22 @@ finite_run() { # scenario text, then options
         no_nonfinite "$tmp/fin.csv" "$tmp/fin.json" "$tmp/fin.txt" &&
         python3 -c 'import json,sys; json.load(open(sys.argv[1]))' "$tmp/fin.json"
 }
+check "astern: the issue's 60 s at -500 rpm from the surface (paper, full plant) stays finite" \
+    finite_run 'duration 60\nat 0 n_rpm=-500\n'
 astern() {
-    finite_run 'duration 60\nat 0 n_rpm=-500\n' &&
+    finite_run 'duration 60\ninit z_m=20\nat 0 n_rpm=-500\n' &&
         grep -Eq 'final: u -1\.2[0-9]* m/s' "$tmp/fin.txt"
 }
-check "astern: 60 s at -500 rpm (paper, full plant) stays finite, u -> -1.21 m/s" astern
+check "astern: 60 s at -500 rpm at 20 m (paper, full plant) stays finite, u -> -1.21 m/s" astern
 check "astern: 30 s at -1500 rpm (paper, vessel) stays finite" \
     finite_run 'duration 30\nat 0 n_rpm=-1500\n' --plant vessel
 check "init q_radps=1 (full plant, 10 s) stays finite" finite_run 'duration 10\ninit q_radps=1\n'
 check "init q_radps=0.5 (full plant, 10 s) stays finite" finite_run 'duration 10\ninit q_radps=0.5\n'
 coasting_astern() {
-    finite_run 'duration 10\ninit u_mps=-3\n' &&
+    finite_run 'duration 10\ninit u_mps=-3 z_m=20\n' &&
         grep -Eq 'final: u -2\.[0-9]+ m/s, .*heading 0\.0 deg' "$tmp/fin.txt"
 }
-check "init u_mps=-3 (full plant, 10 s): coasts astern (u -2.35 m/s), heading kept" \
+check "init u_mps=-3 at 20 m (full plant, 10 s): coasts astern (u -2.35 m/s), heading kept" \
     coasting_astern
 check "init u_mps=-3 with a 0.5 s slow frame (vessel) stays finite" \
     finite_run 'duration 30\ninit u_mps=-3 q_radps=2\n' --plant vessel --slow-frame 500ms
@@ -194,7 +196,7 @@ expect_error "error: an initial heave speed beyond the model's range" \
 # stops with exit 3, the time, what diverged and the last state, and no output holds
 # a nan or an inf.
 guard() {
-    printf 'duration 60\ninit u_mps=-5\n' >"$tmp/g.scn"
+    printf 'duration 60\ninit u_mps=-5 z_m=50\n' >"$tmp/g.scn"
     "$uuvsim" --plant vessel --propulsion mss --scenario "$tmp/g.scn" --csv "$tmp/g.csv" \
         --summary "$tmp/g.json" >"$tmp/g.txt" 2>"$tmp/g.err"
     [ $? -eq 3 ] &&

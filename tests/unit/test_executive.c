@@ -246,7 +246,7 @@ static void test_scenario_check(void) {
 static void test_guard(void) {
     static scenario s;
     static exec g;
-    const char *text = "duration 60\ninit u_mps=-5\n";
+    const char *text = "duration 60\ninit u_mps=-5 z_m=50\n";
     scenario_error err;
     UT_CHECK(scenario_parse(&s, text, ut_text_len(text), &err));
     exec_config cfg;

@@ -445,6 +445,7 @@ static void test_four_quadrant(void) {
     vessel_config cfg;
     vessel_config_default(&cfg);
     cfg.step_s = 0.5;
+    cfg.free_surface = false;
     UT_CHECK(vessel_init(&vm_b, &cfg) == VESSEL_OK);
     UT_EQ_INT(vm_b.substeps, 5);
     const vessel_cmd cmd = {0.1, -0.05, 0.0, 0.0, 1200.0, 0.0, 0.0, 0.0};
