@@ -62,6 +62,10 @@ $(BUILD)/gen/mission_html.inc: ports/linux/mission.html
 .PHONY: FORCE
 FORCE:
 
+# Nothing the build makes is a throw-away intermediate: make keeps every file
+# (no "rm ..." after a run, and the next make finds them in place).
+.SECONDARY:
+
 # ---- Host variants --------------------------------------------------------
 # $(call host_variant,NAME,COMPILER,NUMERIC,EXTRA_CFLAGS,EXTRA_LDFLAGS)
 
@@ -341,15 +345,20 @@ test-run: host-all firmware tools
 RUN_ARGS := --scenario scenarios/default.scn --csv out/telemetry.csv \
             --trace out/trace.csv --trace-from 30 --trace-to 30.06
 
-run: $(BUILD)/linux-float/uuvsim
+# gnuplot is installed first when it is missing (tools/ensure-deps.sh run: as root
+# on a Debian-like machine; otherwise it prints the command and the run stops).
+run: run-deps
+	@$(MAKE) --no-print-directory run-sim
+
+run-deps:
+	@sh tools/ensure-deps.sh run
+
+run-sim: $(BUILD)/linux-float/uuvsim
 	@mkdir -p out
 	$(BUILD)/linux-float/uuvsim $(RUN_ARGS) --summary out/summary.json
-	@if command -v gnuplot >/dev/null 2>&1; then \
-	    gnuplot -e "dir='out'" tools/plots.gp && \
-	    echo "plots: out/trajectory.png depth.png speed.png shaft.png currents.png dc_link.png battery.png"; \
-	else \
-	    echo "gnuplot is missing: install it (apt-get install gnuplot-nox) for the plots"; \
-	fi
+	gnuplot -e "dir='out'" tools/plots.gp
+	@echo "plots: out/trajectory.png plan.png depth.png speed.png shaft.png currents.png dc_link.png battery.png"
+
 
 # The 3-D view of make run's mission: out/mission.html (uuvsim view), one
 # page that opens from file:// (three.js from libjs-three, installed here

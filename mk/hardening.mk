@@ -51,8 +51,9 @@ $(FUZZ_DIR)/obj/%.o: %.c
 $(FUZZ_DIR)/fuzz_%: $(FUZZ_DIR)/obj/tests/fuzz/fuzz_%.o $(FUZZ_LIB_O)
 	$(CLANG) -fsanitize=fuzzer,address,undefined -o $@ $^ -lm
 
-# Kept after the link, so that a second make rebuilds nothing.
-.SECONDARY: $(FUZZ_LIB_O) $(foreach h,$(FUZZ_HARNESSES),$(FUZZ_DIR)/obj/tests/fuzz/fuzz_$(h).o)
+# The objects are kept after the link (the Makefile's .SECONDARY keeps every
+# built file), so that a second make rebuilds nothing. A .SECONDARY with a
+# list here would make that one apply to the list only.
 
 -include $(wildcard $(FUZZ_DIR)/obj/*/*.d $(FUZZ_DIR)/obj/*/*/*.d $(FUZZ_DIR)/obj/*/*/*/*.d $(FUZZ_DIR)/obj/*/*/*/*/*.d $(FUZZ_DIR)/obj/*/*/*/*/*/*.d)
 

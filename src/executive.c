@@ -216,7 +216,8 @@ static exec_status init_frames(exec *e, const exec_config *cfg, double duration)
     }
     double slow_ns = (double)c->fast_ns * (double)c->fast_per_medium * (double)c->medium_per_slow;
     e->slow_s = 1e-9 * slow_ns;
-    double report_s = 1e-9 * (slow_ns * (double)e->slow_per_report);
+    e->report_ns = slow_ns * (double)e->slow_per_report;
+    double report_s = 1e-9 * e->report_ns;
     e->report_s = report_s;
     if (!(e->slow_s <= 10.0) || !(duration > 0.0) || duration / report_s > 4.0e9 ||
         (cfg->plant == EXEC_PLANT_VESSEL && !(e->slow_s >= 1e-3))) {
@@ -567,7 +568,8 @@ static void battery_frame(exec *e) {
     e->count.e_mech_j += m->e_mech_j;
     e->count.e_loss_filter_j += m->e_loss_filter_j;
     e->count.e_loss_motor_j += m->e_loss_motor_j;
-    e->count.limit_s += m->limit_s;
+    /* Once tripped the gates are blocked: the limit the controller still reports acts on nothing. */
+    e->count.limit_s += (e->trip_t_s < 0.0) ? m->limit_s : 0.0;
     e->count.saturations = m->saturations;
     e->acc_i_batt -= bm.i_avg_a;
     e->acc_te += m->te_nm;
@@ -607,7 +609,8 @@ static void make_report(exec *e) {
     exec_frame *r = &e->report;
     r->index = e->frame / e->slow_per_report;
     /* The same times in every mode: whole reporting periods. */
-    r->t_s = (double)r->index * e->report_s;
+    /* From whole nanoseconds, one rounding: 0.3 s is the double nearest 0.3. */
+    r->t_s = ((double)r->index * e->report_ns) / 1e9;
     for (int i = 0; i < VESSEL_NSTATES; i++) {
         r->x[i] = e->x[i];
     }

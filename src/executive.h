@@ -126,7 +126,7 @@ typedef struct {
     double e_mech_j;      /* [J] mechanical energy delivered to the shaft */
     double e_loss_filter_j; /* [J] LC filter losses (energy audit only) */
     double e_loss_motor_j;  /* [J] motor copper losses (energy audit only) */
-    double limit_s;       /* [s] time the drive's torque (slip) limit acted */
+    double limit_s;       /* [s] time the drive's torque (slip) limit acted, until a trip */
     uint64_t medium, control, slow; /* steps run (the fast ones: exec_fast_steps()) */
     uint32_t overruns_medium, overruns_control, overruns_slow;
     uint32_t saturations; /* fixed-point saturation events (fast models) */
@@ -145,6 +145,7 @@ typedef struct {
     uint32_t slow_per_report; /* slow frames per telemetry record */
     double slow_s;            /* [s] slow frame */
     double report_s;          /* [s] reporting period */
+    double report_ns;         /* [ns] the same, a whole number */
     uint32_t frames;          /* slow frames in the run */
     /* Slow segment. */
     propeller_model prop;

@@ -6,6 +6,7 @@
 # machine it installs them; otherwise it prints the command to run and fails.
 #   ensure-deps.sh        what make test needs
 #   ensure-deps.sh view   what make view needs (three.js)
+#   ensure-deps.sh run    what make run needs (gnuplot, for the plots)
 set -u
 
 missing=""
@@ -14,6 +15,8 @@ need() { command -v "$1" >/dev/null 2>&1 || missing="$missing $2"; }
 need_three() { [ -e /usr/share/javascript/three/three.min.js ] || missing="$missing libjs-three"; }
 if [ "${1:-}" = view ]; then
     need_three
+elif [ "${1:-}" = run ]; then
+    need gnuplot gnuplot-nox
 else
     need_three
     need chromium chromium

@@ -67,7 +67,7 @@ echo "  run   $variant: $duration s of $scenario; at shift $shift_n: $fw_overrun
 cmp -s "$out/desk.csv" "$dir/telemetry.csv"
 check $? "$variant: decoded telemetry CSV byte-identical to the desk simulator's ($num build)"
 same=0
-for key in '"steps"' '"saturations"' '"energy_wh"' '"mechanical_energy_wh"' '"final"'; do
+for key in '"steps"' '"saturations"' '"battery_energy_wh"' '"mechanical_energy_wh"' '"final"'; do
     a=$(grep "^  $key" "$out/desk.json" | sed 's/,$//')
     b=$(grep "^  $key" "$sum" | sed 's/,$//')
     [ -n "$a" ] && [ "$a" = "$b" ] || { same=1; echo "        differs: $a / $b"; }

@@ -3,7 +3,8 @@
 # prints one line per run, then the total as "N passed, N failed".
 # Each run's full output is kept in $BUILD/test-logs/. A run counts as failed
 # when its exit status is not 0 or its last line reports a failure; the
-# must-fail programs must fail, which proves that a failing check is seen.
+# must-fail programs must fail, which proves that a failing check is seen:
+# their rows show the planted failure's counts and say so.
 set -u
 BUILD=${BUILD:-build}
 logs="$BUILD/test-logs"
@@ -42,13 +43,14 @@ run() {
     else
         # A must-fail run passes when the program failed and said so.
         if [ $status -ne 0 ] && [ "$f" -gt 0 ]; then
-            verdict="ok (failed as it must, exit $status)"
+            verdict="ok: must fail, and its planted failure was seen (proves failures count)"
             total_pass=$((total_pass + 1))
         else
             verdict="FAILED (a failing check went unseen)"
             runs_bad=$((runs_bad + 1)); total_fail=$((total_fail + 1))
         fi
     fi
+    [ "$expect" = fail ] && counts="${counts:+planted: }$counts"
     printf '%-44s %-26s %4ss  %s\n' "$label" "${counts:-no result line}" "$secs" "$verdict"
     if [ "$verdict" = FAILED ]; then
         grep -E 'FAIL|fatal|error' "$log" | head -n 20 | sed 's/^/    /'
@@ -79,6 +81,7 @@ for n in fixed float; do
         "$BUILD/fmu-$n/uuvsim.fmu" "$BUILD/linux-$n/uuvsim" "$BUILD/tools/fmu_import"
 done
 run "host make run's plots (gnuplot)" pass sh tests/host/test_plots.sh "$BUILD/linux-float/uuvsim"
+run "host make run's dependencies, kept files" pass sh tests/host/test_make.sh
 run "host uuvsim view, page in Chromium" pass sh tests/host/test_view.sh \
     "$BUILD/linux-float/uuvsim"
 run "host math vs libm" pass "$BUILD/tools/test_math_libm"

@@ -11,7 +11,7 @@
 #include "util/parse.h"
 
 const char cli_usage[] =
-    "usage: uuvsim [options] --scenario FILE\n"
+    "usage: uuvsim [options] --scenario FILE     (or --scenario=FILE; likewise every option)\n"
     "       uuvsim derivs FILE.csv\n"
     "       uuvsim view RUN_DIR\n"
     "\n"
@@ -46,6 +46,8 @@ const char cli_usage[] =
     "                           unit: us, ms or s\n"
     "  --csv FILE               telemetry, one row per slow frame (100 ms)\n"
     "  --trace FILE             every 2 us step between --trace-from and --trace-to [s]\n"
+    "                           (defaults: from 0, to 0.02 s after --trace-from; the\n"
+    "                           window must start before the end of the run)\n"
     "  --realtime               pace the run to the wall clock\n"
     "  --summary FILE           the summary as JSON, to a file\n"
     "  --json                   the summary as JSON on stdout\n"
@@ -294,17 +296,30 @@ bool cli_parse(int argc, char **argv, cli_options *o, char *err, size_t err_len)
             o->action = CLI_VERSION;
             return true;
         }
+        if (a[0] != '-') {
+            return fail(err, err_len, "unexpected argument '%s': options start with --; a "
+                        "scenario file is given as --scenario %s", a, a);
+        }
+        /* --name=value is --name value. */
+        const char *eq = strchr(a, '=');
+        size_t name_len = (eq != NULL) ? (size_t)(eq - a) : strlen(a);
         const opt_spec *spec = NULL;
         for (size_t k = 0; k < sizeof options / sizeof options[0]; k++) {
-            if (strcmp(a, options[k].name) == 0) {
+            if (strlen(options[k].name) == name_len && strncmp(a, options[k].name, name_len) == 0) {
                 spec = &options[k];
             }
         }
         if (spec == NULL) {
-            return fail(err, err_len, "unknown option '%s' (see --help)", a);
+            return fail(err, err_len, "unknown option '%.*s' (see --help)", (int)name_len, a);
         }
         const char *value = NULL;
-        if (spec->kind != OPT_FLAG) {
+        if (eq != NULL) {
+            if (spec->kind == OPT_FLAG || eq[1] == '\0') {
+                return fail(err, err_len, "option %s: %s", spec->name,
+                            spec->kind == OPT_FLAG ? "takes no value" : "expected a value");
+            }
+            value = eq + 1;
+        } else if (spec->kind != OPT_FLAG) {
             if (i + 1 >= argc || argv[i + 1][0] == '\0') {
                 return fail(err, err_len, "option %s: expected a value", a);
             }

@@ -329,17 +329,17 @@ static void json_summary(FILE *f, const options *o, const stream *s, const insn_
     }
     fprintf(f, "  \"state\": \"%s\",\n  \"exit_status\": %u,\n", state_name(e), e->exit_status);
     fprintf(f, "  \"sim_time_s\": %.9g,\n  \"records\": %lu,\n", s->last.t_s, s->records);
-    fprintf(f, "  \"steps\": {\"fast\": %llu, \"medium\": %llu, \"control\": %llu, "
+    fprintf(f, "  \"steps\": {\"fast\": %llu, \"motor\": %llu, \"control\": %llu, "
                "\"slow\": %llu},\n",
             (unsigned long long)e->fast, (unsigned long long)e->medium,
             (unsigned long long)e->control, (unsigned long long)e->slow);
     fprintf(f, "  \"overruns\": %u,\n",
             e->overruns_fast + e->overruns_medium + e->overruns_control + e->overruns_slow);
-    fprintf(f, "  \"overruns_by_rate\": {\"fast\": %u, \"medium\": %u, \"control\": %u, "
+    fprintf(f, "  \"overruns_by_rate\": {\"fast\": %u, \"motor\": %u, \"control\": %u, "
                "\"slow\": %u},\n",
             e->overruns_fast, e->overruns_medium, e->overruns_control, e->overruns_slow);
     fprintf(f, "  \"saturations\": %u,\n", e->saturations);
-    fprintf(f, "  \"energy_wh\": %.9g,\n  \"mechanical_energy_wh\": %.9g,\n", e->e_batt_j / 3600.0,
+    fprintf(f, "  \"battery_energy_wh\": %.9g,\n  \"mechanical_energy_wh\": %.9g,\n", e->e_batt_j / 3600.0,
             e->e_mech_j / 3600.0);
     fprintf(f, "  \"stack_used_bytes\": %u,\n", e->stack_used_bytes);
     if (c->present) {

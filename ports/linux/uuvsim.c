@@ -74,6 +74,25 @@ static const char *const inverter_names[] = {"switching", "averaged", "event"};
 static const char *const down_names[] = {"zoh", "foh", "deriv", "stagger"};
 static const char *const up_names[] = {"avg", "filter", "sample"};
 
+/* The mode: a vessel-only run has one frame, neither multi- nor single-rate. */
+static const char *mode_name(const exec *e) {
+    if (e->cfg.plant != EXEC_PLANT_FULL) {
+        return "vessel only";
+    }
+    return e->cfg.single_rate ? "single-rate" : "multi-rate";
+}
+
+/* The injected faults by name, separated by sep and each quoted with q. */
+static void print_faults(FILE *f_out, uint32_t mask, const char *sep, const char *q) {
+    const char *s = "";
+    for (int k = 0; k < SCN_COMMAND_COUNT - SCN_FIRST_FAULT; k++) {
+        if ((mask & (1u << k)) != 0u) {
+            fprintf(f_out, "%s%s%s%s", s, q, scenario_command_names[SCN_FIRST_FAULT + k], q);
+            s = sep;
+        }
+    }
+}
+
 /*
  * The energy audit (--energy-audit): the battery's energy at its terminals
  * against the filter's and the motor's losses and the shaft's work; the
@@ -97,36 +116,32 @@ static void print_json(FILE *f_out, const run_result *r) {
     const manoeuvre_result *m = exec_manoeuvre(e);
     double sim_s = f->t_s;
     fprintf(f_out, "{\n  \"build\": \"%s\",\n  \"mode\": \"%s\",\n", UUV_NUMERIC_NAME,
-           e->cfg.single_rate ? "single-rate" : "multi-rate");
+            mode_name(e));
     fprintf(f_out, "  \"plant\": \"%s\",\n  \"propulsion\": \"%s\",\n  \"inverter\": \"%s\",\n",
            plant_names[e->cfg.plant], law_names[e->cfg.propulsion],
            inverter_names[e->cfg.inverter]);
     fprintf(f_out, "  \"slow_to_fast\": \"%s\",\n  \"fast_to_slow\": \"%s\",\n", down_names[e->cfg.down],
            up_names[e->cfg.up]);
+    /* The frames the run used (a single-rate run steps every segment at the fast one). */
     uint64_t ns[4];
-    cli_frames_ns(&r->o->exec, ns);
+    cli_frames_ns(&e->cfg, ns);
     fprintf(f_out, "  \"frames_s\": {\"fast\": %.9g, \"motor\": %.9g, \"control\": %.9g, "
-            "\"slow\": %.9g},\n", 1e-9 * (double)ns[0], 1e-9 * (double)ns[1],
-            1e-9 * (double)ns[2], 1e-9 * (double)ns[3]);
+            "\"slow\": %.9g},\n  \"report_s\": %.9g,\n", 1e-9 * (double)ns[0],
+            1e-9 * (double)ns[1], 1e-9 * (double)ns[2], 1e-9 * (double)ns[3], e->report_s);
     fprintf(f_out, "  \"sim_time_s\": %.9g,\n  \"wall_time_s\": %.6g,\n  \"realtime_factor\": %.6g,\n",
            sim_s, r->wall_s, r->wall_s > 0.0 ? sim_s / r->wall_s : 0.0);
-    fprintf(f_out, "  \"steps\": {\"fast\": %llu, \"medium\": %llu, \"control\": %llu, \"slow\": %llu},\n",
+    fprintf(f_out, "  \"steps\": {\"fast\": %llu, \"motor\": %llu, \"control\": %llu, \"slow\": %llu},\n",
            (unsigned long long)exec_fast_steps(e), (unsigned long long)e->count.medium,
            (unsigned long long)e->count.control, (unsigned long long)e->count.slow);
     fprintf(f_out, "  \"overruns\": %u,\n  \"saturations\": %u,\n",
            exec_overruns(e), e->count.saturations);
-    fprintf(f_out, "  \"energy_wh\": %.9g,\n  \"mechanical_energy_wh\": %.9g,\n",
+    fprintf(f_out, "  \"battery_energy_wh\": %.9g,\n  \"mechanical_energy_wh\": %.9g,\n",
            e->count.e_batt_j / 3600.0, e->count.e_mech_j / 3600.0);
     if (e->cfg.energy_audit) {
         print_energy_balance(f_out, e);
     }
     fprintf(f_out, "  \"faults\": [");
-    for (int k = 0; k < SCN_COMMAND_COUNT - SCN_FIRST_FAULT; k++) {
-        if ((e->fault_mask & (1u << k)) != 0u) {
-            fprintf(f_out, "%s\"%s\"", (e->fault_mask & ((1u << k) - 1u)) != 0u ? ", " : "",
-                    scenario_command_names[SCN_FIRST_FAULT + k]);
-        }
-    }
+    print_faults(f_out, e->fault_mask, ", ", "\"");
     fprintf(f_out, "],\n  \"protection\": {\"tripped\": %s, \"reason\": \"%s\"",
             f->trip != 0u ? "true" : "false",
             out_trip_names[f->trip < OUT_TRIP_NAMES ? f->trip : 0u]);
@@ -135,8 +150,9 @@ static void print_json(FILE *f_out, const run_result *r) {
     }
     fprintf(f_out, ", \"torque_limit_s\": %.6g},\n", e->count.limit_s);
     if (r->o->realtime) {
-        fprintf(f_out, "  \"realtime_lag_max_s\": %.6g,\n  \"realtime_late_frames\": %u,\n",
-               r->realtime_lag_max_s, r->realtime_late);
+        fprintf(f_out, "  \"realtime_lag_max_s\": %.6g,\n  \"realtime_late_frames\": %u,\n"
+                "  \"realtime_behind\": %s,\n",
+                r->realtime_lag_max_s, r->realtime_late, r->realtime_late > 0u ? "true" : "false");
     }
     fprintf(f_out, "  \"final\": {");
     for (int i = 0; i < 12; i++) {
@@ -179,29 +195,37 @@ static void print_text(const run_result *r) {
     const manoeuvre_result *m = exec_manoeuvre(e);
     double rtf = r->wall_s > 0.0 ? f->t_s / r->wall_s : 0.0;
     printf("uuvsim %s, %s build, %s: plant %s, propulsion %s", UUVSIM_VERSION, UUV_NUMERIC_NAME,
-           e->cfg.single_rate ? "single-rate" : "multi-rate", plant_names[e->cfg.plant],
-           law_names[e->cfg.propulsion]);
+           mode_name(e), plant_names[e->cfg.plant], law_names[e->cfg.propulsion]);
     if (e->cfg.plant == EXEC_PLANT_FULL) {
         printf(", inverter %s, couplings %s/%s", inverter_names[e->cfg.inverter],
                down_names[e->cfg.down], up_names[e->cfg.up]);
     }
     uint64_t ns[4];
     char t[4][32];
-    cli_frames_ns(&r->o->exec, ns);
+    cli_frames_ns(&e->cfg, ns);
     for (int k = 0; k < 4; k++) {
         (void)cli_frame_text(ns[k], t[k], sizeof t[k]);
     }
     if (e->cfg.plant != EXEC_PLANT_FULL) {
         printf("\nframe: %s", t[3]);
     } else if (e->cfg.single_rate) {
+        char rep_t[32];
+        (void)cli_frame_text((uint64_t)(e->report_s * 1e9 + 0.5), rep_t, sizeof rep_t);
         printf("\nframes: every segment at %s, controller %s, records every %s", t[0], t[2],
-               t[3]);
+               rep_t);
     } else if (e->cfg.inverter == DRIVE_INVERTER_AVERAGED) {
         printf("\nframes: the drive at the controller's %s, slow %s", t[2], t[3]);
     } else {
         printf("\nframes: fast %s, motor %s, controller %s, slow %s", t[0], t[1], t[2], t[3]);
     }
-    printf("\nsimulated %.1f s in %.3f s (%.0fx real time)\n", f->t_s, r->wall_s, rtf);
+    printf("\nsimulated %.1f s in %.3f s (%.*fx real time)\n", f->t_s, r->wall_s,
+           rtf < 10.0 ? 2 : 0, rtf);
+    if (r->o->realtime && r->realtime_late > 0u) {
+        printf("paced to the wall clock: FELL BEHIND, %u of the records late, worst lag %.3f s\n",
+               r->realtime_late, r->realtime_lag_max_s);
+    } else if (r->o->realtime) {
+        printf("paced to the wall clock: kept up (worst lag 0 s)\n");
+    }
     if (e->cfg.plant == EXEC_PLANT_FULL) {
         printf("steps: %llu fast, %llu motor, %llu control, %llu slow; %u overruns, "
                "%u saturations\n",
@@ -210,8 +234,19 @@ static void print_text(const run_result *r) {
                exec_overruns(e), e->count.saturations);
         printf("battery: %.1f Wh drawn, state of charge %.4f, DC link %.1f V\n",
                e->count.e_batt_j / 3600.0, f->soc, f->v_dc_v);
+        if (e->cfg.energy_audit) {
+            const exec_counters *c = &e->count;
+            double res = c->e_batt_j - c->e_loss_filter_j - c->e_loss_motor_j - c->e_mech_j;
+            printf("energy balance: battery %.3f Wh = filter losses %.3f + motor losses %.3f + "
+                   "shaft work %.3f + residual %.3f Wh (%.3f %%)\n",
+                   c->e_batt_j / 3600.0, c->e_loss_filter_j / 3600.0,
+                   c->e_loss_motor_j / 3600.0, c->e_mech_j / 3600.0, res / 3600.0,
+                   c->e_batt_j != 0.0 ? 100.0 * res / c->e_batt_j : 0.0);
+        }
         if (e->fault_mask != 0u || f->trip != 0u) {
-            printf("faults injected: 0x%x; protection: %s\n", (unsigned)e->fault_mask,
+            printf("faults injected: ");
+            print_faults(stdout, e->fault_mask, ", ", "");
+            printf("%s; protection: %s\n", e->fault_mask != 0u ? "" : "none",
                    f->trip != 0u ? out_trip_names[f->trip < OUT_TRIP_NAMES ? f->trip : 0u]
                                  : "not tripped");
         }
@@ -305,6 +340,12 @@ static int run(const cli_options *o) {
     if (o->exec.duration_s <= 0.0 && scn.duration_s <= 0.0) {
         fprintf(stderr, "uuvsim: %s: no duration (give 'duration <s>' or --duration)\n",
                 o->scenario_path);
+        return 2;
+    }
+    const double duration = (o->exec.duration_s > 0.0) ? o->exec.duration_s : scn.duration_s;
+    if (o->trace_path != NULL && o->trace_from_s >= duration) {
+        fprintf(stderr, "uuvsim: option --trace-from: %g s is not before the end of the run "
+                "(%g s): the trace would be empty\n", o->trace_from_s, duration);
         return 2;
     }
     scenario_error err;

@@ -36,7 +36,7 @@ static const char *const template_lines[] = {
 #define THREE_MAX_BYTES ((size_t)64 << 20)
 #define PATH_BYTES 4096
 
-/* The columns the page cannot do without; the drive's (v_dc, soc, ...) are optional. */
+/* The columns the page cannot do without; the drive's (v_dc_v, soc, ...) are optional. */
 static const char *const required_columns[] = {
     "t_s",     "u_mps",       "v_mps",       "w_mps",        "x_m",          "y_m",
     "z_m",     "phi_rad",     "theta_rad",   "psi_rad",      "delta_r_rad",  "delta_s_rad",

@@ -46,11 +46,11 @@ check() {
     fi
     if [ -z "$why" ]; then
         ok=$(awk -v n="$(field n_rpm)" -v trip="$(field tripped)" -v reason="$(field reason)" \
-                 -v vdc="$(last v_dc)" -v ibatt="$(last i_batt_a)" \
+                 -v vdc="$(last v_dc_v)" -v ibatt="$(last i_batt_a)" \
                  -v dr="$(last delta_r_rad)" -v sat="$(field saturations)" \
                  -v te="$(last te_nm)" -v irms="$(last i_rms_a)" -v lim="$(field torque_limit_s)" \
                  "BEGIN { print (($cond) ? 1 : 0) }")
-        [ "$ok" = 1 ] || why="reaction not as expected: n_rpm $(field n_rpm), tripped $(field tripped) ($(field reason)), v_dc $(last v_dc), i_batt $(last i_batt_a), delta_r $(last delta_r_rad), te $(last te_nm), torque limit $(field torque_limit_s) s"
+        [ "$ok" = 1 ] || why="reaction not as expected: n_rpm $(field n_rpm), tripped $(field tripped) ($(field reason)), v_dc $(last v_dc_v), i_batt $(last i_batt_a), delta_r $(last delta_r_rad), te $(last te_nm), torque limit $(field torque_limit_s) s"
     fi
     if [ -z "$why" ]; then
         pass=$((pass + 1)); echo "  ok    $name"

@@ -64,7 +64,7 @@ check "summary: --json carries the build and the turning-circle metrics" summary
 trace_window() {
     "$uuvsim" --quiet --scenario scenarios/bench_2s.scn --duration 0.2 --trace "$tmp/t.csv" \
         --trace-from 0.1 --trace-to 0.11 &&
-        head -n 1 "$tmp/t.csv" | grep -q '^t_s,sa,sb,sc,m_index,f_hz,v_dc,v_an,v_bn,v_cn,vc_a' &&
+        head -n 1 "$tmp/t.csv" | grep -q '^t_s,sa,sb,sc,m_index,f_hz,v_dc_v,v_an_v,v_bn_v,v_cn_v,vc_a_v' &&
         [ "$(wc -l <"$tmp/t.csv")" -eq 5002 ]
 }
 check "trace: one row per 2 us step in the window, with the documented columns" trace_window
@@ -84,7 +84,7 @@ frames() {
         --csv "$tmp/f.csv" >"$tmp/f.json" &&
         grep -q '"frames_s": {"fast": 2e-06, "motor": 0.0002, "control": 0.0008, "slow": 0.04}' \
             "$tmp/f.json" &&
-        grep -q '"steps": {"fast": 1000000, "medium": 10000, "control": 2500, "slow": 50}' \
+        grep -q '"steps": {"fast": 1000000, "motor": 10000, "control": 2500, "slow": 50}' \
             "$tmp/f.json" &&
         [ "$(wc -l <"$tmp/f.csv")" -eq 52 ] &&
         awk -F'[:,]' '/"n_rpm"/ { for (i = 1; i < NF; i++) if ($i ~ /"n_rpm"/) v = $(i + 1) }
@@ -207,6 +207,71 @@ guard() {
         python3 -c 'import json,sys; json.load(open(sys.argv[1]))' "$tmp/g.json"
 }
 check "guard: a diverging run (mss astern) stops with exit 3, time and state, no nan" guard
+# The summaries' fixes, each a check that failed before.
+# A paced run that falls behind says so (single-rate runs below real time).
+behind() {
+    "$uuvsim" --single-rate --realtime --energy-audit --scenario scenarios/bench_2s.scn \
+        --duration 0.3 >"$tmp/b.txt" && cat "$tmp/b.txt" && grep -q 'FELL BEHIND' "$tmp/b.txt" &&
+        ! grep -q '(0x real time)\|(1x real time)' "$tmp/b.txt" &&
+        "$uuvsim" --json --single-rate --realtime --scenario scenarios/bench_2s.scn \
+            --duration 0.3 | grep -q '"realtime_behind": true'
+}
+check "realtime: a paced run that falls behind the wall clock is flagged" behind
+audit_text() {
+    "$uuvsim" --energy-audit --scenario scenarios/bench_2s.scn --duration 0.3 >"$tmp/a.txt" &&
+        grep -q '^energy balance: battery [0-9.]* Wh = filter losses .* residual' "$tmp/a.txt"
+}
+check "--energy-audit: the text summary prints the energy balance" audit_text
+single_frames() {
+    "$uuvsim" --json --single-rate --scenario scenarios/bench_2s.scn --duration 0.1 >"$tmp/s.json" &&
+        grep -q '"frames_s": {"fast": 2e-06, "motor": 2e-06, "control": 0.0008, "slow": 2e-06}' \
+            "$tmp/s.json" && grep -q '"report_s": 0.1,' "$tmp/s.json"
+}
+check "single-rate: frames_s gives the 2 us frames the run used, report_s the records' 100 ms" \
+    single_frames
+printf 'duration 3\nat 0 n_rpm=1400\nat 1 leg_short=a\n' >"$tmp/trip.scn"
+trip_limit() {
+    "$uuvsim" --scenario "$tmp/trip.scn" >"$tmp/t.txt" && cat "$tmp/t.txt" &&
+        grep -q '^faults injected: leg_short; protection: leg short' "$tmp/t.txt" &&
+        "$uuvsim" --json --scenario "$tmp/trip.scn" >"$tmp/t.json" &&
+        grep -q '"battery_energy_wh"' "$tmp/t.json" && grep -q '"steps": {"fast": [0-9]*, "motor"' "$tmp/t.json" &&
+        tr -d '\n' <"$tmp/t.json" | sed 's/.*"at_s": \([0-9.e+-]*\), "torque_limit_s": \([0-9.e+-]*\).*/\1 \2/' |
+            awk '{ print "tripped at " $1 " s, torque limit " $2 " s"; exit !($2 <= $1) }'
+}
+check "faults by name; torque_limit_s stops at the trip; battery_energy_wh; steps.motor" trip_limit
+vessel_mode() {
+    "$uuvsim" --plant vessel --scenario scenarios/turning_circle.scn --duration 1 | head -1 |
+        grep -q 'vessel only: plant vessel' &&
+        "$uuvsim" --json --plant vessel --scenario scenarios/turning_circle.scn --duration 1 |
+            grep -q '"mode": "vessel only"'
+}
+check "a vessel-only run is labelled 'vessel only', not multi-rate" vessel_mode
+option_equals() {
+    "$uuvsim" --quiet --scenario=scenarios/bench_2s.scn --duration=0.1 --csv="$tmp/e.csv" &&
+        [ "$(wc -l <"$tmp/e.csv")" -eq 3 ]
+}
+check "--scenario=FILE (and every --option=value) is accepted" option_equals
+help_trace() { "$uuvsim" --help | grep -q 'to 0.02 s after --trace-from'; }
+check "--help gives the default trace window" help_trace
+csv_digits() {
+    "$uuvsim" --quiet --scenario scenarios/default.scn --duration 60 --csv "$tmp/c.csv" \
+        --trace "$tmp/tr.csv" --trace-from 0 --trace-to 0.002 &&
+        sed -n 3p "$tmp/c.csv" | grep -q '^0\.1,' &&
+        ! cut -d, -f1 "$tmp/c.csv" | grep -q '0000000000000[1-9]\|9999999999999[0-9]' &&
+        ! grep -qE '(^|,)-0(,|$)' "$tmp/c.csv" "$tmp/tr.csv" &&
+        ! grep -qE 'e-(1[6-9]|[2-9][0-9]|[1-9][0-9][0-9])' "$tmp/c.csv" &&
+        head -1 "$tmp/c.csv" | grep -q ',v_dc_v,' &&
+        head -1 "$tmp/tr.csv" | grep -q '^t_s,sa,sb,sc,m_index,f_hz,v_dc_v,v_an_v,.*,i_a_a,i_b_a,i_c_a,i_dc_a,n_rpm,te_nm$' &&
+        awk -F, 'NR > 1 { for (i = 1; i <= NF; i++) if ($i + 0 != $i) bad++ } END { exit bad > 0 }' "$tmp/c.csv"
+}
+check "CSV: shortest round-trip digits (0.1), no -0, no tiny decays (below 1e-15: 0), units on v_dc_v and the trace" \
+    csv_digits
+roundtrip() {
+    "$uuvsim" --quiet --plant vessel --propulsion mss --deep-water \
+        --scenario scenarios/straight_1300rpm.scn --csv "$tmp/s.csv" &&
+        "$csvdiff" --rel 0 --abs 1e-15 "$tmp/s.csv" "$tmp/s.csv"
+}
+check "CSV: the shortest digits still read back (csvdiff of a file against itself)" roundtrip
 
 printf 'duration 10\nat 1 rudder=abc\n' >"$tmp/bad1.scn"
 expect_error "error: malformed value names file, line and field" \
@@ -255,6 +320,13 @@ printf 'duration 10\nat 1 rudder=46deg\n' >"$tmp/deg.scn"
 expect_error "error: an angle out of range in degrees is reported in degrees" \
     "deg.scn:2: field 'rudder': value 46 deg out of range \[-45, 45\]" \
     "$uuvsim" --scenario "$tmp/deg.scn"
+
+expect_error "error: a positional argument is reported as such, with --scenario suggested" \
+    "unexpected argument 'scenarios/bench_2s.scn': .* --scenario scenarios/bench_2s.scn" \
+    "$uuvsim" scenarios/bench_2s.scn
+expect_error "error: a trace window after the end of the run" \
+    "option --trace-from: 3 s is not before the end of the run \(2 s\)" \
+    "$uuvsim" --scenario scenarios/bench_2s.scn --trace "$tmp/bad.csv" --trace-from 3
 
 echo "$pass passed, $fail failed"
 [ $fail -eq 0 ]
