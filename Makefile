@@ -356,7 +356,7 @@ run-deps:
 run-sim: $(BUILD)/linux-float/uuvsim
 	@mkdir -p out
 	$(BUILD)/linux-float/uuvsim $(RUN_ARGS) --summary out/summary.json
-	gnuplot -e "dir='out'" tools/plots.gp
+	gnuplot -e "dir='out'; scn='scenarios/default.scn'" tools/plots.gp
 	@echo "plots: out/trajectory.png plan.png depth.png speed.png shaft.png currents.png dc_link.png battery.png"
 
 

@@ -2,7 +2,8 @@
 # The plots of make run (tools/plots.gp): a short run of the default
 # mission with a trace window, then the script. gnuplot must finish without
 # a message (a missing column or an empty data set gives one), and each of
-# the seven pictures must be a PNG with something drawn in it.
+# the eight pictures must be a PNG with something drawn in it; the
+# scenario's events are found and placed (tools/plot_events.awk).
 #   test_plots.sh UUVSIM
 # Prints one line per check and "N passed, N failed".
 set -u
@@ -24,7 +25,8 @@ fi
 
 if ! command -v gnuplot >/dev/null 2>&1; then
     bad "gnuplot" "not installed (make test installs it: tools/ensure-deps.sh)"
-elif gnuplot -e "dir='$tmp'" tools/plots.gp >"$tmp/gp.out" 2>&1 && [ ! -s "$tmp/gp.out" ]; then
+elif gnuplot -e "dir='$tmp'; scn='scenarios/default.scn'" tools/plots.gp >"$tmp/gp.out" 2>&1 &&
+    [ ! -s "$tmp/gp.out" ]; then
     ok "tools/plots.gp runs without a message"
 else
     bad "tools/plots.gp runs without a message" "$(head -5 "$tmp/gp.out")"
@@ -32,7 +34,7 @@ fi
 
 # The PNG signature's readable bytes, and a size no blank frame reaches
 # (a frame with axes and no data is about 11 kB at 900 x 600).
-for p in trajectory depth speed shaft currents dc_link battery; do
+for p in trajectory plan depth speed shaft currents dc_link battery; do
     f="$tmp/$p.png"
     size=0
     [ -f "$f" ] && size=$(wc -c <"$f")
@@ -42,6 +44,15 @@ for p in trajectory depth speed shaft currents dc_link battery; do
         bad "$p.png" "missing, not a PNG, or $size bytes"
     fi
 done
+
+# The events of the default mission's first 31 s: the start and the turn at 40 s is not
+# reached; 0 s with its three commands.
+if [ -f "$tmp/events.dat" ] && [ "$(wc -l <"$tmp/events.dat")" -eq 1 ] &&
+    grep -q '^0,0,0,0,"n_rpm=1000 heading=0 depth=10"$' "$tmp/events.dat"; then
+    ok "events: the scenario's commands placed at the records (events.dat)"
+else
+    bad "events" "$(cat "$tmp/events.dat" 2>/dev/null)"
+fi
 
 echo "$pass passed, $fail failed"
 [ "$fail" -eq 0 ]
