@@ -72,12 +72,12 @@ fmu: $(BUILD)/fmu-$(FMU_NUM)/uuvsim.fmu
 	cp $< $(BUILD)/uuvsim.fmu
 	@echo "written $(BUILD)/uuvsim.fmu ($(FMU_NUM) build)"
 
-# The test master (tests/host/fmu_import.c): the scenario parser from the
-# desk's objects; the FMU itself through dlopen().
+# The test master (tests/host/fmu_import.c): the scenario parser and the CSV
+# number format from the desk's objects; the FMU itself through dlopen().
 FMU_IMPORT := $(BUILD)/tools/fmu_import
-$(FMU_IMPORT): tests/host/fmu_import.c $(linux-fixed_SRC_O) $(FMU_H)
+$(FMU_IMPORT): tests/host/fmu_import.c $(linux-fixed_SRC_O) $(BUILD)/linux-fixed/obj/ports/linux/csv_out.o $(FMU_H)
 	@mkdir -p $(@D)
-	$(CC) $(TOOL_CFLAGS) -D_POSIX_C_SOURCE=200809L -Iports/fmu -o $@ $< $(linux-fixed_SRC_O) \
-	    -ldl -lm
+	$(CC) $(TOOL_CFLAGS) -D_POSIX_C_SOURCE=200809L -Iports/fmu -Iports/linux -o $@ $< \
+	    $(linux-fixed_SRC_O) $(BUILD)/linux-fixed/obj/ports/linux/csv_out.o -ldl -lm
 
 test-run: $(FMU_FILES) $(FMU_IMPORT)

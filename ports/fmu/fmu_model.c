@@ -39,7 +39,7 @@ static const char *const input_text[FMU_N_INPUTS] = {
 };
 
 static const char *const drive_names[FMU_N_DRIVE] = {
-    "te_nm", "i_rms_a", "v_dc", "i_batt_a", "soc", "m_index", "f_hz",
+    "te_nm", "i_rms_a", "v_dc_v", "i_batt_a", "soc", "m_index", "f_hz",
 };
 static const char *const drive_units[FMU_N_DRIVE] = {"N.m", "A", "V", "A", "1", "1", "Hz"};
 static const char *const drive_text[FMU_N_DRIVE] = {

@@ -21,7 +21,7 @@ enum {
     /* Outputs: the record's 17 vessel states, then the drive's means. */
     FMU_VR_STATE = 100,
     FMU_VR_DRIVE = FMU_VR_STATE + VESSEL_NSTATES,
-    FMU_N_DRIVE = 7, /* te, i_rms, v_dc, i_batt, soc, m_index, f_hz */
+    FMU_N_DRIVE = 7, /* te, i_rms, v_dc_v, i_batt, soc, m_index, f_hz */
     FMU_VR_TRIP = 200,
     /* Parameters (fixed: set before the end of initialisation). */
     FMU_VR_INVERTER = 300,

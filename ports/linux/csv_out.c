@@ -74,22 +74,22 @@ void csv_header(FILE *f, bool full_plant) {
  * double (15, 16 or 17: %g drops trailing zeros, so 0.1 is "0.1"), and 0
  * for magnitudes below CSV_FLUSH and for -0.
  */
-void csv_number(FILE *f, double v) {
+void csv_format_number(char *buf, size_t cap, double v) {
     if (!(fabs(v) >= CSV_FLUSH)) {
-        if (v != v) {
-            fputs("nan", f);
-        } else {
-            fputc('0', f);
-        }
+        snprintf(buf, cap, "%s", (v != v) ? "nan" : "0");
         return;
     }
-    char buf[40];
     for (int digits = 15; digits <= 17; digits++) {
-        snprintf(buf, sizeof buf, "%.*g", digits, v);
+        snprintf(buf, cap, "%.*g", digits, v);
         if (strtod(buf, NULL) == v) {
             break;
         }
     }
+}
+
+void csv_number(FILE *f, double v) {
+    char buf[40];
+    csv_format_number(buf, sizeof buf, v);
     fputs(buf, f);
 }
 

@@ -48,6 +48,8 @@ extern const char *const out_trip_names[OUT_TRIP_NAMES];
 #define CSV_FLUSH 1e-15
 
 void csv_number(FILE *f, double v);
+/* The same text into buf (capacity cap, at least 32). */
+void csv_format_number(char *buf, size_t cap, double v);
 void csv_header(FILE *f, bool full_plant);
 void csv_row(FILE *f, const exec_frame *r, bool full_plant);
 

@@ -29,6 +29,7 @@
 #include <string.h>
 
 #include "fmi2.h"
+#include "csv_out.h"
 #include "scenario.h"
 
 static int passed, failed;
@@ -456,7 +457,7 @@ static void play(const fmu_api *f, fmi2Component c, player *p, double t) {
     (void)set1(f, c, 1u + SCN_RUDDER, p->zz_rudder);
 }
 
-/* The outputs as the desk writes them (%.17g, integers as %u), joined by commas. */
+/* The outputs as the desk writes them (csv_format_number, integers as %u), joined by commas. */
 static void output_row(const fmu_api *f, fmi2Component c, const column_map *m, char *out,
                        size_t cap) {
     size_t n = 0;
@@ -470,7 +471,7 @@ static void output_row(const fmu_api *f, fmi2Component c, const column_map *m, c
         } else {
             double x = 0.0;
             (void)f->get_real(c, &m->vr[k], 1u, &x);
-            snprintf(v, sizeof v, "%.17g", x);
+            csv_format_number(v, sizeof v, x);
         }
         n += (size_t)snprintf(out + n, cap - n, "%s%s", k ? "," : "", v);
     }

@@ -10,7 +10,7 @@
 # their Makefile and runs the first 20 s of the scenario through it.
 # Prints "N passed, N failed" last.
 set -u
-fmu=$1; uuvsim=$2; importer=$3; scenario=${4:-scenarios/default.scn}
+fmu=$1; uuvsim=$2; importer=$3; scenario=${4:-tests/host/manual_mission.scn}
 here=$(dirname "$0")
 pass=0; fail=0
 ok() { echo "ok  : $1"; pass=$((pass + 1)); }
