@@ -82,7 +82,7 @@ for n in fixed float; do
 done
 run "host make run's plots (gnuplot)" pass sh tests/host/test_plots.sh "$BUILD/linux-float/uuvsim"
 run "host make run's dependencies, kept files" pass sh tests/host/test_make.sh
-run "host uuvsim view, page in Chromium" pass sh tests/host/test_view.sh \
+run "host uuvsim view and --view in Chromium" pass sh tests/host/test_view.sh \
     "$BUILD/linux-float/uuvsim"
 run "host math vs libm" pass "$BUILD/tools/test_math_libm"
 run "host check_tables (exhaustive)" pass "$BUILD/tools/check_tables"

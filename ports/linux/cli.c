@@ -49,6 +49,11 @@ const char cli_usage[] =
     "                           (defaults: from 0, to 0.02 s after --trace-from; the\n"
     "                           window must start before the end of the run)\n"
     "  --realtime               pace the run to the wall clock\n"
+    "  --view                   the live view: the mission page on 127.0.0.1 while\n"
+    "                           the paced run (--view implies --realtime) makes its\n"
+    "                           frames; the address goes to stderr, and the run\n"
+    "                           starts when a browser opens it\n"
+    "  --view-port N            its port (default 8026; 0: any free port)\n"
     "  --summary FILE           the summary as JSON, to a file\n"
     "  --json                   the summary as JSON on stdout\n"
     "  --quiet                  no text summary, no progress line\n"
@@ -80,7 +85,7 @@ static bool fail(char *err, size_t len, const char *format, ...) {
     return false;
 }
 
-typedef enum { OPT_FLAG, OPT_PATH, OPT_SECONDS, OPT_CHOICE, OPT_FRAME } opt_kind;
+typedef enum { OPT_FLAG, OPT_PATH, OPT_SECONDS, OPT_CHOICE, OPT_FRAME, OPT_PORT } opt_kind;
 
 typedef struct {
     const char *name;
@@ -111,6 +116,8 @@ static const opt_spec options[] = {
     {"--deep-water", OPT_FLAG, NULL, FIELD(exec.deep_water)},
     {"--energy-audit", OPT_FLAG, NULL, FIELD(exec.energy_audit)},
     {"--realtime", OPT_FLAG, NULL, FIELD(realtime)},
+    {"--view", OPT_FLAG, NULL, FIELD(view)},
+    {"--view-port", OPT_PORT, NULL, FIELD(view_port)},
     {"--json", OPT_FLAG, NULL, FIELD(json)},
     {"--quiet", OPT_FLAG, NULL, FIELD(quiet)},
 };
@@ -240,6 +247,18 @@ static bool set_option(const opt_spec *spec, const char *value, cli_options *o, 
         *(double *)(void *)field = v;
         return true;
     }
+    case OPT_PORT: {
+        double v = 0.0;
+        size_t used = 0;
+        size_t n = strlen(value);
+        if (!parse_number(value, n, &v, &used) || used != n || !(v >= 0.0 && v <= 65535.0) ||
+            v != (double)(unsigned)v) {
+            return fail(err, err_len, "option %s: expected a port number in [0, 65535], got '%s'",
+                        spec->name, value);
+        }
+        *(double *)(void *)field = v;
+        return true;
+    }
     case OPT_FRAME: {
         uint64_t ns = frame_ns_of(value);
         if (ns == 0u) {
@@ -270,6 +289,7 @@ bool cli_parse(int argc, char **argv, cli_options *o, char *err, size_t err_len)
     o->action = CLI_RUN;
     exec_config_default(&o->exec);
     o->trace_to_s = -1.0;
+    o->view_port = 8026.0;
     if (argc >= 2 && strcmp(argv[1], "derivs") == 0) {
         if (argc != 3) {
             return fail(err, err_len, "derivs: expected exactly one CSV file");
@@ -334,6 +354,9 @@ bool cli_parse(int argc, char **argv, cli_options *o, char *err, size_t err_len)
     }
     if (!apply_frames(o, err, err_len)) {
         return false;
+    }
+    if (o->view) {
+        o->realtime = true;
     }
     if (o->trace_path != NULL) {
         if (o->exec.plant != EXEC_PLANT_FULL) {

@@ -28,6 +28,8 @@ typedef struct {
     uint64_t control_frame_ns;  /* --control-frame; 0: the default */
     uint64_t slow_frame_ns;     /* --slow-frame; 0: the default */
     bool realtime;
+    bool view;                  /* --view: the live view (implies --realtime) */
+    double view_port;           /* --view-port: its port on 127.0.0.1 (0: any free one) */
     bool json;                  /* the JSON summary on stdout (instead of the text one) */
     bool quiet;                 /* no text summary, no progress line */
 } cli_options;

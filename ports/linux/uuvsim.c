@@ -17,13 +17,14 @@
 
 #include "cli.h"
 #include "csv_out.h"
+#include "live.h"
 #include "uuv_config.h"
+#include "view.h"
 
 #define UUVSIM_VERSION "0.2.0"
 #define MAX_SCENARIO_BYTES (1u << 20)
 
 int uuvsim_derivs(const char *path); /* derivs.c */
-int uuvsim_view(const char *dir);    /* view.c */
 
 static double wall_seconds(void) {
     struct timespec ts;
@@ -318,9 +319,16 @@ static void print_nonfinite(const exec *e) {
     fprintf(stderr, "\n");
 }
 
-/* Sleeps until the wall clock reaches the simulated time t_s (from w0). */
-static void pace(run_result *r, double w0, double t_s) {
+/* Sleeps until the wall clock reaches the simulated time t_s (from w0); the
+ * live view serves its browsers in that time instead (and when late, once). */
+static void pace(run_result *r, double w0, double t_s, live_server *live) {
     double ahead = t_s - (wall_seconds() - w0);
+    if (live != NULL) {
+        live_wait(live, ahead);
+    }
+    if (live != NULL && ahead > 0.0) {
+        return;
+    }
     if (ahead > 0.0) {
         struct timespec ts = {(time_t)ahead, (long)((ahead - (double)(time_t)ahead) * 1e9)};
         nanosleep(&ts, NULL);
@@ -372,6 +380,12 @@ static int run(const cli_options *o) {
         out_abort(&csv);
         return 2;
     }
+    live_server *live = NULL;
+    if (o->view && (live = live_open((unsigned)o->view_port, full)) == NULL) {
+        out_abort(&csv);
+        out_abort(&trace);
+        return 2;
+    }
     if (csv.f != NULL) {
         csv_header(csv.f, full);
     }
@@ -388,6 +402,10 @@ static int run(const cli_options *o) {
     (void)exec_report_take(&e, &r.last);
     if (csv.f != NULL) {
         csv_row(csv.f, &r.last, full);
+    }
+    if (live != NULL) {
+        live_frame(live, &r.last);
+        live_wait_browser(live); /* the run starts when someone watches */
     }
     double w0 = wall_seconds();
     double next_progress = w0 + 0.5;
@@ -422,8 +440,11 @@ static int run(const cli_options *o) {
         if (csv.f != NULL) {
             csv_row(csv.f, &r.last, full);
         }
+        if (live != NULL) {
+            live_frame(live, &r.last);
+        }
         if (o->realtime) {
-            pace(&r, w0, r.last.t_s);
+            pace(&r, w0, r.last.t_s, live);
         }
         if (progress && wall_seconds() >= next_progress) {
             next_progress += 0.5;
@@ -435,6 +456,19 @@ static int run(const cli_options *o) {
     r.wall_s = wall_seconds() - w0;
     if (progress) {
         fprintf(stderr, "\r%78s\r", "");
+    }
+    if (live != NULL) {
+        /* The summary to the live view's browsers, then the end of their streams. */
+        char *text = NULL;
+        size_t len = 0u;
+        FILE *m = open_memstream(&text, &len);
+        if (m != NULL) {
+            print_json(m, &r);
+            fclose(m);
+        }
+        live_end(live, text != NULL ? text : "null", text != NULL ? len : 4u);
+        free(text);
+        live_close(live);
     }
     bool ok_files = out_close(&csv);
     ok_files = out_close(&trace) && ok_files;

@@ -22,8 +22,7 @@
 #include <unistd.h>
 
 #include "csv_out.h"
-
-int uuvsim_view(const char *dir);
+#include "view.h"
 
 /* The template, one string per line (generated from ports/linux/mission.html). */
 static const char *const template_lines[] = {
@@ -43,10 +42,7 @@ static const char *const required_columns[] = {
     "delta_bp_rad", "delta_bs_rad", "n_rpm"};
 #define N_REQUIRED (sizeof required_columns / sizeof required_columns[0])
 
-typedef struct {
-    char *data;
-    size_t len;
-} text;
+typedef view_text text;
 
 /* Reads a whole file; returns false with errno's reason when it cannot. */
 static bool read_text(const char *path, size_t max, text *t, const char **why) {
@@ -292,8 +288,9 @@ static bool has_script_end(const text *t) {
     return false;
 }
 
-/* The names of the fault commands (by bit of the faults column) and of the trips. */
-static void write_names(FILE *f) {
+/* The names of the fault commands (by bit of the faults column) and of the
+ * trips; live: the page came from the live view's server (live.c). */
+static void write_names(FILE *f, bool live) {
     fputs("{\"faults\": [", f);
     for (int k = SCN_FIRST_FAULT; k < SCN_COMMAND_COUNT; k++) {
         fprintf(f, "%s\"%s\"", k > SCN_FIRST_FAULT ? ", " : "", scenario_command_names[k]);
@@ -302,11 +299,11 @@ static void write_names(FILE *f) {
     for (unsigned k = 0u; k < OUT_TRIP_NAMES; k++) {
         fprintf(f, "%s\"%s\"", k > 0u ? ", " : "", out_trip_names[k]);
     }
-    fputs("]}\n", f);
+    fprintf(f, "], \"live\": %s}\n", live ? "true" : "false");
 }
 
-/* The page: the template with its four placeholder lines replaced. */
-static void write_page(FILE *f, const text *three, const text *csv, const text *summary) {
+void view_write_page(FILE *f, const view_text *three, const view_text *csv,
+                     const view_text *summary, bool live) {
     for (size_t i = 0; i < sizeof template_lines / sizeof template_lines[0]; i++) {
         const char *l = template_lines[i];
         if (strcmp(l, "@THREE_JS@\n") == 0) {
@@ -318,18 +315,39 @@ static void write_page(FILE *f, const text *three, const text *csv, const text *
                 fputc('\n', f);
             }
         } else if (strcmp(l, "@SUMMARY_JSON@\n") == 0) {
-            if (summary->data != NULL) {
+            if (summary != NULL && summary->data != NULL) {
                 write_summary(f, summary);
             } else {
                 fputs("null", f);
             }
             fputc('\n', f);
         } else if (strcmp(l, "@NAMES_JSON@\n") == 0) {
-            write_names(f);
+            write_names(f, live);
         } else {
             fputs(l, f);
         }
     }
+}
+
+bool view_read_three(view_text *three) {
+    const char *path = getenv("UUVSIM_THREE_JS");
+    if (path == NULL || path[0] == '\0') {
+        path = THREE_DEFAULT;
+    }
+    const char *why = "";
+    if (!read_text(path, THREE_MAX_BYTES, three, &why)) {
+        fprintf(stderr, "uuvsim: view: %s: %s (three.js: install it with "
+                "'apt-get install libjs-three', or name the file in UUVSIM_THREE_JS)\n",
+                path, why);
+        return false;
+    }
+    if (has_script_end(three)) {
+        fprintf(stderr, "uuvsim: view: %s: holds '</script', cannot be put into a page\n", path);
+        free(three->data);
+        three->data = NULL;
+        return false;
+    }
+    return true;
 }
 
 int uuvsim_view(const char *dir) {
@@ -345,10 +363,6 @@ int uuvsim_view(const char *dir) {
         snprintf(page_path, sizeof page_path, "%s/mission.html", dir) >= PATH_BYTES) {
         fprintf(stderr, "uuvsim: view: %s: path too long\n", dir);
         return 2;
-    }
-    const char *three_path = getenv("UUVSIM_THREE_JS");
-    if (three_path == NULL || three_path[0] == '\0') {
-        three_path = THREE_DEFAULT;
     }
     const char *why = "";
     text csv, summary = {NULL, 0u}, three;
@@ -374,18 +388,10 @@ int uuvsim_view(const char *dir) {
             return 2;
         }
     }
-    if (!read_text(three_path, THREE_MAX_BYTES, &three, &why)) {
-        fprintf(stderr, "uuvsim: view: %s: %s (three.js: install it with "
-                "'apt-get install libjs-three', or name the file in UUVSIM_THREE_JS)\n",
-                three_path, why);
-    } else if (has_script_end(&three)) {
-        fprintf(stderr, "uuvsim: view: %s: holds '</script', cannot be put into a page\n",
-                three_path);
-        free(three.data);
-    } else {
+    if (view_read_three(&three)) {
         out_file page;
         if (out_open(&page, page_path)) {
-            write_page(page.f, &three, &csv, &summary);
+            view_write_page(page.f, &three, &csv, &summary, false);
             if (out_close(&page)) {
                 status = 0;
                 printf("written %s\n", page_path);

@@ -3,7 +3,8 @@
 # input, and the page in a real browser (headless Chromium, software GL:
 # view_browser.py): it loads without an error, draws the vehicle, and the
 # time slider moves it. A deliberately broken copy of the page must fail
-# the browser check, which proves that a broken page is seen.
+# the browser check, which proves that a broken page is seen. Then the
+# live view (uuvsim --view) of a paced 8 s run in the same browser check.
 #   test_view.sh UUVSIM
 # Prints one line per check and "N passed, N failed".
 set -u
@@ -121,6 +122,48 @@ else
     ok "a broken page fails the browser check ($(grep -m1 '^FAIL' "$tmp/broken" | head -c 120))"
 fi
 sed 's/^/    /' "$tmp/browser"
+
+# The live view: a paced 8 s run that starts when the browser opens its
+# page; the frames stream in, the summary comes at the end, and the run's
+# telemetry is the same bytes as without the view.
+mkdir -p "$tmp/live"
+"$uuvsim" --quiet --view --view-port 0 --scenario scenarios/default.scn --duration 8 \
+    --csv "$tmp/live/telemetry.csv" 2>"$tmp/live/err" &
+pid=$!
+url=""
+for k in 1 2 3 4 5 6 7 8 9 10 11 12 13 14 15 16 17 18 19 20; do
+    url=$(sed -n 's|.*live view on \(http://127\.0\.0\.1:[0-9]*/\).*|\1|p' "$tmp/live/err")
+    [ -n "$url" ] && break
+    sleep 0.25
+done
+if [ -n "$url" ] && python3 "$here/view_browser.py" --live "$url" >"$tmp/live/browser" 2>&1; then
+    ok "the live view in headless Chromium: $(grep -c '^ok' "$tmp/live/browser") checks"
+else
+    bad "the live view in headless Chromium" "$(grep -v '^ok' "$tmp/live/browser" 2>/dev/null |
+        head -5) $(cat "$tmp/live/err")"
+fi
+# The run ends by itself once watched; it is stopped if the browser never came.
+for k in 1 2 3 4 5 6 7 8 9 10 11 12 13 14 15 16 17 18 19 20; do
+    kill -0 $pid 2>/dev/null || break
+    sleep 0.5
+done
+kill $pid 2>/dev/null
+wait $pid
+status=$?
+"$uuvsim" --quiet --scenario scenarios/default.scn --duration 8 --csv "$tmp/live/plain.csv"
+if [ $status -eq 0 ] && cmp -s "$tmp/live/telemetry.csv" "$tmp/live/plain.csv"; then
+    ok "the watched run exits 0 with the same telemetry as an unwatched one"
+else
+    bad "the watched run" "exit $status, or its telemetry differs"
+fi
+sed 's/^/    /' "$tmp/live/browser"
+if "$uuvsim" --view --view-port 70000 --scenario scenarios/default.scn >/dev/null 2>"$tmp/err"; then
+    bad "error: --view-port 70000" "exit 0"
+elif grep -q "expected a port number in \[0, 65535\], got '70000'" "$tmp/err"; then
+    ok "error: --view-port 70000 (exit 2)"
+else
+    bad "error: --view-port 70000" "$(cat "$tmp/err")"
+fi
 
 echo "$pass passed, $fail failed"
 [ "$fail" -eq 0 ]

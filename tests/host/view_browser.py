@@ -1,6 +1,7 @@
 """The browser test of uuvsim view: headless Chromium opens mission.html.
 
     view_browser.py PAGE.html [T_A T_B]
+    view_browser.py --live URL      (the live view of uuvsim --view)
 
 Drives one Chromium (software GL, SwiftShader) through the DevTools
 protocol on a pipe (--remote-debugging-pipe) and checks that
@@ -10,6 +11,9 @@ protocol on a pipe (--remote-debugging-pipe) and checks that
     from the same view without it (#vehicle=0);
   - moving the time slider to T_B moves the vehicle: where the vehicle was
     at T_A the view has changed, and the vehicle's pixels have moved.
+With --live it opens the page of a running `uuvsim --view` and checks
+that it loads, that frames arrive while it is open, and that the end of the
+run brings the summary, with no console error.
 Prints one line per check and "N passed, N failed"; exit status 1 on a
 failure. Standard library only (pngcmp.py reads the screenshots).
 """
@@ -153,13 +157,53 @@ def errors_in(events):
     return out
 
 
+def frames_in(title):
+    """The number of frames the page's title reports."""
+    for part in title.split(","):
+        part = part.strip()
+        if part.endswith(" frames") and part.split()[0].isdigit():
+            return int(part.split()[0])
+    return -1
+
+
+def live(b, url, check):
+    """The checks of the live view on an open browser session."""
+    start = time.time()
+    b.send("Page.navigate", {"url": url})
+    title = b.wait_title("mission: ok")
+    n1 = frames_in(title)
+    check(title.startswith("mission: ok") and "live" in title,
+          "the live page loads (%.1f s, %d frames so far)" % (time.time() - start, n1),
+          "title '%s'" % title)
+    b.pump(1.5)
+    b.settle()
+    n2 = frames_in(b.evaluate("document.title") or "")
+    check(n2 >= n1 + 5, "frames arrive while the page is open: %d, then %d after 1.5 s"
+          % (n1, n2), "expected at least 5 more")
+    title = b.wait_title("mission: ok, t = ", 1)
+    end = time.time() + TIMEOUT_S
+    while "the run has ended" not in title and time.time() < end:
+        b.pump(0.2)
+        title = b.evaluate("document.title") or ""
+    text = b.evaluate("document.getElementById('summary').textContent") or ""
+    check("the run has ended" in title and "real-time factor" in text,
+          "the end of the run brings the summary (%d frames)" % frames_in(title),
+          "title '%s', summary '%s'" % (title, text[:80]))
+
+
 def main():
+    if len(sys.argv) == 3 and sys.argv[1] == "--live":
+        return run_checks(sys.argv[2], None, None)
     if len(sys.argv) not in (2, 4):
-        sys.stderr.write("usage: view_browser.py PAGE.html [T_A T_B]\n")
+        sys.stderr.write("usage: view_browser.py PAGE.html [T_A T_B] | --live URL\n")
         return 2
     page = os.path.abspath(sys.argv[1])
     t_a, t_b = (float(sys.argv[2]), float(sys.argv[3])) if len(sys.argv) == 4 else (5.0, 28.0)
-    url = "file://" + page
+    return run_checks("file://" + page, t_a, t_b)
+
+
+def run_checks(url, t_a, t_b):
+    """The checks of a page (t_a, t_b given) or of the live view (None)."""
     passed = failed = 0
 
     def check(ok, what, why=""):
@@ -187,6 +231,9 @@ def main():
                                session=False)["sessionId"]
             for domain in ("Runtime", "Log", "Page"):
                 b.send(domain + ".enable")
+            if t_a is None:
+                live(b, url, check)
+                raise StopIteration
             start = time.time()
             b.send("Page.navigate", {"url": url + "#cam=overview&t=%g&vehicle=0" % t_a})
             title = b.wait_title("mission: ok")
@@ -232,6 +279,8 @@ def main():
             check(len(mask_b) >= 50 and moved >= 10,
                   "the vehicle moved %.0f px on the screen (%d pixels at %g s)"
                   % (moved, len(mask_b), t_b), "expected at least 10 px")
+        except StopIteration:
+            pass
         except (RuntimeError, OSError, ValueError, KeyError) as e:
             check(False, "the browser session", str(e))
         finally:
