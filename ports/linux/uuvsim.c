@@ -67,6 +67,7 @@ typedef struct {
     double wall_s;
     double realtime_lag_max_s; /* [s] worst lag of the simulation behind the wall clock */
     uint32_t realtime_late;    /* reports produced after their wall-clock time */
+    const scenario *scn;
 } run_result;
 
 static const char *const plant_names[] = {"vessel", "full"};
@@ -109,6 +110,32 @@ static void print_energy_balance(FILE *f_out, const exec *e) {
             c->e_batt_j / 3600.0, c->e_loss_filter_j / 3600.0, c->e_loss_motor_j / 3600.0,
             c->e_mech_j / 3600.0, residual / 3600.0,
             c->e_batt_j != 0.0 ? 100.0 * residual / c->e_batt_j : 0.0);
+}
+
+/*
+ * The scenario's timed commands up to the run's end (the mission page marks
+ * them along the track), in the command's unit (angles in rad), and the
+ * zig-zag's start and stop.
+ */
+static void print_events(FILE *f_out, const scenario *scn, double end_s) {
+    fprintf(f_out, "  \"events\": [");
+    const char *sep = "";
+    for (size_t k = 0; k < scn->n_events && scn->events[k].t_s <= end_s; k++) {
+        const scenario_event *ev = &scn->events[k];
+        fprintf(f_out, "%s{\"t_s\": %.9g, \"command\": \"%s\", \"value\": %.9g}", sep, ev->t_s,
+                scenario_command_names[ev->command], ev->value);
+        sep = ", ";
+    }
+    const scenario_zigzag *z = &scn->zigzag;
+    if (z->enabled && z->start_s <= end_s) {
+        fprintf(f_out, "%s{\"t_s\": %.9g, \"command\": \"zigzag\", \"value\": %.9g}", sep,
+                z->start_s, z->rudder_rad);
+        if (z->stop_s >= 0.0 && z->stop_s <= end_s) {
+            fprintf(f_out, ", {\"t_s\": %.9g, \"command\": \"zigzag_stop\", \"value\": 0}",
+                    z->stop_s);
+        }
+    }
+    fprintf(f_out, "],\n");
 }
 
 static void print_json(FILE *f_out, const run_result *r) {
@@ -155,6 +182,7 @@ static void print_json(FILE *f_out, const run_result *r) {
                 "  \"realtime_behind\": %s,\n",
                 r->realtime_lag_max_s, r->realtime_late, r->realtime_late > 0u ? "true" : "false");
     }
+    print_events(f_out, r->scn, sim_s);
     fprintf(f_out, "  \"final\": {");
     for (int i = 0; i < 12; i++) {
         fprintf(f_out, "\"%s\": %.10g, ", vessel_state_names[i], f->x[i]);
@@ -398,7 +426,7 @@ static int run(const cli_options *o) {
         trace_last = (uint64_t)(o->trace_to_s / fast_s + 0.5);
     }
     bool progress = !o->quiet && isatty(STDERR_FILENO);
-    run_result r = {o, &e, {0}, 0.0, 0.0, 0u};
+    run_result r = {o, &e, {0}, 0.0, 0.0, 0u, &scn};
     (void)exec_report_take(&e, &r.last);
     if (csv.f != NULL) {
         csv_row(csv.f, &r.last, full);

@@ -39,6 +39,14 @@ if "$uuvsim" --quiet --scenario tests/host/manual_mission.scn --duration 31 \
 else
     bad "31 s of tests/host/manual_mission.scn" "$(cat "$tmp/err")"
 fi
+# The summary lists the scenario's timed commands (the page marks them).
+# (31 s of the mission: the one at 0 s; the next comes at 40 s.)
+if grep -q '^  "events": \[{"t_s": 0, "command": "n_rpm", "value": 1000}\],$' "$run/summary.json"
+then
+    ok "the summary lists the scenario's commands (events)"
+else
+    bad "the summary lists the scenario's commands" "$(grep '"events"' "$run/summary.json")"
+fi
 start=$(date +%s%N)
 if "$uuvsim" view "$run" >"$tmp/out" 2>"$tmp/err" && [ -s "$run/mission.html" ]; then
     ms=$(( ($(date +%s%N) - start) / 1000000 ))
