@@ -41,7 +41,7 @@ TEST_C := tests/harness/ut.c tests/harness/runner.c $(sort $(wildcard tests/unit
 SUITES := $(patsubst tests/unit/test_%.c,%,$(sort $(wildcard tests/unit/test_*.c)))
 LINUX_PORT_C := $(sort $(wildcard ports/linux/hal_*.c))
 UUVSIM_C := ports/linux/uuvsim.c ports/linux/cli.c ports/linux/csv_out.c ports/linux/derivs.c \
-            ports/linux/view.c ports/linux/live.c
+            ports/linux/view.c ports/linux/live.c ports/linux/out_file.c
 CORTEXM_PORT_C := ports/cortexm/startup.c ports/cortexm/hal_cortexm.c \
                   ports/cortexm/semihost.c ports/cortexm/libc_min.c
 

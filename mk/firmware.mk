@@ -28,6 +28,7 @@ BENCH_DURATION ?= 2
 # The host decoder links the desk simulator's objects (the fixed build's:
 # the stream says which build the target ran; the decoder needs neither).
 $(FW_DECODE): $(linux-fixed_SRC_O) $(BUILD)/linux-fixed/obj/ports/linux/csv_out.o \
+              $(BUILD)/linux-fixed/obj/ports/linux/out_file.o \
               $(BUILD)/linux-fixed/obj/ports/linux/fw_decode.o
 	@mkdir -p $(@D)
 	$(CC) -o $@ $^ -lm

@@ -70,6 +70,7 @@ for v in linux-fixed linux-float; do
     run "host $v property, 3000 random cases" pass "$BUILD/$v/property" 3000 1
     run "host $v property through uuvsim, 100" pass sh tests/host/test_property.sh \
         "$BUILD/$v/uuvsim" 100 1
+    run "host $v output safety" pass sh tests/host/test_outputs.sh "$BUILD/$v/uuvsim"
 done
 for v in linux-fixed linux-float; do
     run "host $v fault injection" pass sh tests/host/test_faults.sh "$BUILD/$v/uuvsim"

@@ -1,5 +1,5 @@
 /*
- * Output files (see csv_out.h).
+ * The CSV layouts (see csv_out.h).
  */
 #include "csv_out.h"
 
@@ -7,45 +7,6 @@
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
-
-bool out_open(out_file *o, const char *path) {
-    *o = (out_file){0};
-    if (strlen(path) >= sizeof o->path) {
-        fprintf(stderr, "uuvsim: %s: path too long\n", path);
-        return false;
-    }
-    strcpy(o->path, path);
-    snprintf(o->partial, sizeof o->partial, "%s.partial", path);
-    o->f = fopen(o->partial, "w");
-    if (o->f == NULL) {
-        fprintf(stderr, "uuvsim: %s: cannot write: %s\n", path, strerror(errno));
-        return false;
-    }
-    return true;
-}
-
-bool out_close(out_file *o) {
-    if (o->f == NULL) {
-        return true;
-    }
-    bool ok = !ferror(o->f);
-    ok = (fclose(o->f) == 0) && ok;
-    o->f = NULL;
-    if (!ok || rename(o->partial, o->path) != 0) {
-        fprintf(stderr, "uuvsim: %s: cannot write: %s\n", o->path, strerror(errno));
-        remove(o->partial);
-        return false;
-    }
-    return true;
-}
-
-void out_abort(out_file *o) {
-    if (o->f != NULL) {
-        fclose(o->f);
-        o->f = NULL;
-        remove(o->partial);
-    }
-}
 
 const char *const out_trip_names[OUT_TRIP_NAMES] = {"none", "leg short", "under-voltage",
                                                     "phase loss"};

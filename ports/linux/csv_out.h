@@ -1,7 +1,5 @@
 /*
- * Output files of the desk simulator, written under FILE.partial and
- * renamed to FILE when complete, so that a failed run leaves nothing
- * half-written.
+ * The CSV layouts of the desk simulator (the files themselves: out_file.h).
  *
  * Telemetry CSV (one row per 100 ms): t_s, the 17 vessel states of the
  * reference layout, the 5 commands, and in the full plant te_nm, i_rms_a,
@@ -26,19 +24,7 @@
 #include <stdio.h>
 
 #include "executive.h"
-
-typedef struct {
-    FILE *f;
-    char path[4096];
-    char partial[4096 + 16];
-} out_file;
-
-/* Opens the partial file; prints the error on failure. */
-bool out_open(out_file *o, const char *path);
-/* Completes the file (renames it into place); prints the error on failure. */
-bool out_close(out_file *o);
-/* Abandons the file: removes the partial output. */
-void out_abort(out_file *o);
+#include "out_file.h"
 
 /* The protection's reasons, by the telemetry's trip value (drive_trip). */
 #define OUT_TRIP_NAMES 4u

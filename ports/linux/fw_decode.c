@@ -353,6 +353,7 @@ static void json_summary(FILE *f, const options *o, const stream *s, const insn_
 }
 
 int main(int argc, char **argv) {
+    out_program(prog);
     options o;
     if (parse_options(argc, argv, &o) != 0) {
         return 2;
@@ -366,27 +367,34 @@ int main(int argc, char **argv) {
     if (buf == NULL) {
         return 2;
     }
-    out_file csv = {0}, json = {0};
+    static out_file csv, json;
     static stream s;
-    bool ok = (o.csv_path == NULL || out_open(&csv, o.csv_path)) &&
-              (o.json_path == NULL || out_open(&json, o.json_path)) &&
-              decode(o.in_path, buf, n, csv.f, &s);
+    const out_spec outs[2] = {{"--csv", o.csv_path}, {"--json", o.json_path}};
+    const out_spec ins[2] = {{"the telemetry", o.in_path}, {"--insn", o.insn_path}};
+    bool ok = out_check(outs, 2, ins, 2);
+    if (ok) {
+        out_guard_signals();
+    }
+    ok = ok && (o.csv_path == NULL || out_open(&csv, o.csv_path)) &&
+         (o.json_path == NULL || out_open(&json, o.json_path)) &&
+         decode(o.in_path, buf, n, csv.f, &s);
     free(buf);
+    if (ok && json.f != NULL) {
+        json_summary(json.f, &o, &s, &counts);
+    }
+    ok = ok && out_finish(&csv);
+    ok = ok && out_finish(&json);
+    ok = ok && out_commit(&csv) && out_commit(&json);
     if (!ok) {
         out_abort(&csv);
         out_abort(&json);
         return 2;
     }
-    if (json.f != NULL) {
-        json_summary(json.f, &o, &s, &counts);
-    }
-    ok = out_close(&csv);
-    ok = out_close(&json) && ok;
-    if (ok && s.end.state == EXEC_STOP_NONFINITE) {
+    if (s.end.state == EXEC_STOP_NONFINITE) {
         fprintf(stderr, "%s: %s: the run stopped: a state became non-finite in slow frame %llu; "
                         "the last record is at t = %.9g s\n",
                 prog, o.in_path, (unsigned long long)s.end.slow + 1u, s.last.t_s);
         return 3;
     }
-    return ok ? 0 : 2;
+    return 0;
 }

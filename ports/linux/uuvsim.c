@@ -8,10 +8,12 @@
  * because a state became non-finite (the executive's guard).
  */
 #include <errno.h>
+#include <fcntl.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
 #include <time.h>
 #include <unistd.h>
 
@@ -25,6 +27,7 @@
 #define MAX_SCENARIO_BYTES (1u << 20)
 
 int uuvsim_derivs(const char *path); /* derivs.c */
+FILE *uuvsim_open_input(const char *path);
 
 static double wall_seconds(void) {
     struct timespec ts;
@@ -32,11 +35,38 @@ static double wall_seconds(void) {
     return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
 }
 
-/* Reads and parses the scenario; prints the error (file:line: field) on failure. */
-static bool load_scenario(const char *path, scenario *scn) {
-    FILE *f = fopen(path, "rb");
+/*
+ * Opens an input file for reading: a regular file only (a FIFO without a
+ * writer would block the run forever, a device has no end), opened without
+ * blocking before that is known.
+ */
+FILE *uuvsim_open_input(const char *path) {
+    int fd = open(path, O_RDONLY | O_NONBLOCK | O_CLOEXEC);
+    struct stat st;
+    if (fd < 0 || fstat(fd, &st) != 0) {
+        fprintf(stderr, "uuvsim: %s: cannot open: %s\n", path, strerror(errno));
+        if (fd >= 0) {
+            close(fd);
+        }
+        return NULL;
+    }
+    if (!S_ISREG(st.st_mode)) {
+        fprintf(stderr, "uuvsim: %s: cannot open: not a regular file\n", path);
+        close(fd);
+        return NULL;
+    }
+    FILE *f = fdopen(fd, "rb");
     if (f == NULL) {
         fprintf(stderr, "uuvsim: %s: cannot open: %s\n", path, strerror(errno));
+        close(fd);
+    }
+    return f;
+}
+
+/* Reads and parses the scenario; prints the error (file:line: field) on failure. */
+static bool load_scenario(const char *path, scenario *scn) {
+    FILE *f = uuvsim_open_input(path);
+    if (f == NULL) {
         return false;
     }
     char *buf = malloc(MAX_SCENARIO_BYTES + 1u);
@@ -399,19 +429,28 @@ static int run(const cli_options *o) {
         return 2;
     }
     bool full = (o->exec.plant == EXEC_PLANT_FULL);
-    out_file csv = {0};
-    out_file trace = {0};
-    if (o->csv_path != NULL && !out_open(&csv, o->csv_path)) {
+    const out_spec outs[3] = {{"--csv", o->csv_path},
+                              {"--trace", o->trace_path},
+                              {"--summary", o->summary_path}};
+    const out_spec ins[1] = {{"--scenario", o->scenario_path}};
+    if (!out_check(outs, 3, ins, 1)) {
         return 2;
     }
-    if (o->trace_path != NULL && !out_open(&trace, o->trace_path)) {
+    out_guard_signals();
+    /* Every output is written in full before any is committed (out_file.h). */
+    static out_file csv, trace, sum;
+    if ((o->csv_path != NULL && !out_open(&csv, o->csv_path)) ||
+        (o->trace_path != NULL && !out_open(&trace, o->trace_path)) ||
+        (o->summary_path != NULL && !out_open(&sum, o->summary_path))) {
         out_abort(&csv);
+        out_abort(&trace);
         return 2;
     }
     live_server *live = NULL;
     if (o->view && (live = live_open((unsigned)o->view_port, full)) == NULL) {
         out_abort(&csv);
         out_abort(&trace);
+        out_abort(&sum);
         return 2;
     }
     if (csv.f != NULL) {
@@ -498,25 +537,26 @@ static int run(const cli_options *o) {
         free(text);
         live_close(live);
     }
-    bool ok_files = out_close(&csv);
-    ok_files = out_close(&trace) && ok_files;
-    if (!ok_files) {
-        return 2;
-    }
-    if (o->summary_path != NULL) {
-        out_file sum;
-        if (!out_open(&sum, o->summary_path)) {
-            return 2;
-        }
+    if (sum.f != NULL) {
         print_json(sum.f, &r);
-        if (!out_close(&sum)) {
-            return 2;
-        }
     }
     if (o->json) {
         print_json(stdout, &r);
     } else if (!o->quiet) {
         print_text(&r);
+    }
+    bool ok = out_finish(&csv);
+    ok = out_finish(&trace) && ok;
+    ok = out_finish(&sum) && ok;
+    ok = ok && out_stdout_ok();
+    ok = ok && out_commit(&csv);
+    ok = ok && out_commit(&trace);
+    ok = ok && out_commit(&sum);
+    if (!ok) {
+        out_abort(&csv);
+        out_abort(&trace);
+        out_abort(&sum);
+        return 2;
     }
     if (e.state == EXEC_STOP_NONFINITE) {
         print_nonfinite(&e);
@@ -535,10 +575,10 @@ int main(int argc, char **argv) {
     switch (o.action) {
     case CLI_HELP:
         fputs(cli_usage, stdout);
-        return 0;
+        return out_stdout_ok() ? 0 : 2;
     case CLI_VERSION:
         printf("uuvsim %s (%s build)\n", UUVSIM_VERSION, UUV_NUMERIC_NAME);
-        return 0;
+        return out_stdout_ok() ? 0 : 2;
     case CLI_DERIVS:
         return uuvsim_derivs(o.derivs_path);
     case CLI_VIEW:

@@ -10,7 +10,7 @@
  * column names with the columns the page draws, then rows of as many
  * finite numbers with increasing time. Columns are found by name; extra
  * columns are carried along. The page is written under .partial and
- * renamed when complete (out_open, out_close).
+ * renamed when complete (out_open, out_finish, out_commit).
  */
 #include <ctype.h>
 #include <errno.h>
@@ -392,9 +392,9 @@ int uuvsim_view(const char *dir) {
         out_file page;
         if (out_open(&page, page_path)) {
             view_write_page(page.f, &three, &csv, &summary, false);
-            if (out_close(&page)) {
-                status = 0;
+            if (out_finish(&page) && out_commit(&page)) {
                 printf("written %s\n", page_path);
+                status = out_stdout_ok() ? 0 : 2;
             }
         }
         free(three.data);

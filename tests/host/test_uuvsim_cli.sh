@@ -288,6 +288,36 @@ expect_error "error: unwritable CSV" "cannot write" \
 printf 'case,delta_r_cmd_rad\n1,2\n' >"$tmp/badd.csv"
 expect_error "error: derivs file with a wrong header" "badd.csv:1: column 3" \
     "$uuvsim" derivs "$tmp/badd.csv"
+# derivs reads whole lines of any length, the header's column count, plain decimal
+# numbers only, finite and in range; each error names the line and column.
+head -n 1 $V/npsauv_derivatives.csv | cut -d, -f1-23 >"$tmp/dh.csv"
+row=$(sed -n 2p $V/npsauv_derivatives.csv | cut -d, -f1-23)
+derivs_bad() { # name, pattern, the row's replacement (sed expression on the row)
+    { cat "$tmp/dh.csv"; echo "$row" | sed "$3"; } >"$tmp/bad_d.csv"
+    expect_error "derivs: $1" "$2" "$uuvsim" derivs "$tmp/bad_d.csv"
+}
+derivs_bad "a decimal comma" "bad_d.csv:2: expected 23 columns as in the header, got 24" 's/\./,/'
+derivs_bad "trailing junk" "bad_d.csv:2: column 23: expected a plain decimal number, got '1300x'" \
+    's/,[^,]*$/,1300x/'
+derivs_bad "an extra column" "bad_d.csv:2: expected 23 columns as in the header, got 24" 's/$/,1/'
+derivs_bad "inf" "bad_d.csv:2: column 7: expected a plain decimal number, got 'inf'" \
+    's/^\([^,]*,[^,]*,[^,]*,[^,]*,[^,]*,[^,]*\),[^,]*/\1,inf/'
+derivs_bad "a hex float" "column 7: expected a plain decimal number, got '0x1p1'" \
+    's/^\([^,]*,[^,]*,[^,]*,[^,]*,[^,]*,[^,]*\),[^,]*/\1,0x1p1/'
+derivs_bad "u_mps=1e300" "bad_d.csv:2: column 7: out of range \\[-100, 100\\]" \
+    's/^\([^,]*,[^,]*,[^,]*,[^,]*,[^,]*,[^,]*\),[^,]*/\1,1e300/'
+{ cat "$tmp/dh.csv"; printf '%s\0\n' "$row"; } >"$tmp/bad_d.csv"
+expect_error "derivs: a NUL byte" "bad_d.csv:2: the line holds a NUL byte" \
+    "$uuvsim" derivs "$tmp/bad_d.csv"
+{ cat "$tmp/dh.csv"; printf '%s' "$row"; head -c 9000 /dev/zero | tr '\0' '1'; echo; } \
+    >"$tmp/bad_d.csv"
+expect_error "derivs: a line longer than 8191 bytes is one line" \
+    "bad_d.csv:2: column 23: expected a plain decimal number|bad_d.csv:2: column 23: out of range" \
+    "$uuvsim" derivs "$tmp/bad_d.csv"
+{ cat "$tmp/dh.csv"; echo "$row"; } | tr '\n' '\r' >"$tmp/cr_d.csv"
+derivs_cr() { "$uuvsim" derivs "$tmp/cr_d.csv" | [ "$(wc -l)" -eq 2 ]; }
+check "derivs: a file of CR line ends reads as lines" derivs_cr
+
 printf 'duration 1\nat 0 n_rpm=800\nat 0.5 leg_short=a\n' >"$tmp/fault.scn"
 expect_error "error: a fault the averaged inverter cannot model" \
     "fault.scn:3: field 'leg_short': the averaged inverter has no switches" \
