@@ -9,7 +9,7 @@
  * The telemetry is checked before anything is written: a header of
  * column names with the columns the page draws, then rows of as many
  * finite numbers with increasing time. Columns are found by name; extra
- * columns are carried along. The page is written under .partial and
+ * columns are carried along. The page is written under .partial.PID and
  * renamed when complete (out_open, out_finish, out_commit).
  */
 #include <ctype.h>
