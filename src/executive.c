@@ -219,19 +219,21 @@ static exec_status init_frames(exec *e, const exec_config *cfg, double duration)
     e->report_ns = slow_ns * (double)e->slow_per_report;
     double report_s = 1e-9 * e->report_ns;
     e->report_s = report_s;
-    if (!(e->slow_s <= 10.0) || !(duration > 0.0) || duration / report_s > 4.0e9 ||
-        (cfg->plant == EXEC_PLANT_VESSEL && !(e->slow_s >= 1e-3))) {
-        return EXEC_ERR_CONFIG;
+    if (!(e->slow_s <= 10.0) || (cfg->plant == EXEC_PLANT_VESSEL && !(e->slow_s >= 1e-3))) {
+        return EXEC_ERR_SLOW_FRAME;
+    }
+    if (!(duration > 0.0) || duration / report_s > 4.0e9) {
+        return (duration > 0.0) ? EXEC_ERR_DURATION_LONG : EXEC_ERR_DURATION_SHORT;
     }
     /* Whole reporting periods; a duration in between rounds to the nearest. */
     uint64_t reports = (uint64_t)(duration / report_s + 0.5);
     if (reports == 0u || reports * e->slow_per_report > 0xFFFFFFFFu) {
-        return EXEC_ERR_CONFIG;
+        return (reports == 0u) ? EXEC_ERR_DURATION_SHORT : EXEC_ERR_DURATION_LONG;
     }
     e->frames = (uint32_t)(reports * e->slow_per_report);
     uint64_t medium_frames = (uint64_t)e->frames * c->medium_per_slow;
     if (cfg->plant == EXEC_PLANT_FULL && medium_frames > 0xFFFFFFFFu) {
-        return EXEC_ERR_CONFIG;
+        return EXEC_ERR_DURATION_LONG;
     }
     e->medium_left = (uint32_t)medium_frames;
     e->stagger_at = drive_staggered(cfg->down, c->fast_per_medium) ? c->fast_per_medium / 2u : 0u;

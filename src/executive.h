@@ -102,7 +102,10 @@ typedef struct {
 typedef enum {
     EXEC_OK = 0,
     EXEC_ERR_CONFIG, /* a rate, ratio, duration or option out of range */
-    EXEC_ERR_MODEL   /* a model refused its parameters */
+    EXEC_ERR_MODEL,  /* a model refused its parameters */
+    EXEC_ERR_DURATION_SHORT, /* the duration rounds to no record (less than half a period) */
+    EXEC_ERR_DURATION_LONG,  /* the duration needs more frames than the counters hold */
+    EXEC_ERR_SLOW_FRAME      /* the slow frame beyond 10 s, or below 1 ms for the vessel plant */
 } exec_status;
 
 /* Why a run ended early. */

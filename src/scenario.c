@@ -186,6 +186,11 @@ static bool parse_duration(parser *p, const parse_token *tok, size_t n) {
         return fail(p, &tok[0], "expected 'duration <seconds>'");
     }
     static const value_rule rule = {"s", false, 1e-3, MAX_TIME_S, NULL};
+    if (p->s->duration_line != 0u) {
+        return fail(p, &tok[0], "a second duration (the first is on line %u)",
+                    (unsigned)p->s->duration_line);
+    }
+    p->s->duration_line = p->line;
     return read_value(p, &tok[0], tok[1].text, tok[1].len, &rule, &p->s->duration_s);
 }
 

@@ -85,6 +85,7 @@ typedef struct {
 
 typedef struct {
     double duration_s;                    /* [s]; 0 when the file gave none */
+    uint32_t duration_line;               /* its line (0: none) */
     double init[VESSEL_NSTATES];          /* initial vessel state */
     uint16_t init_rpm_line;               /* line of an init n_rpm=... (0: none) */
     scenario_event events[SCENARIO_MAX_EVENTS];

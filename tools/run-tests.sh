@@ -81,6 +81,8 @@ for n in fixed float; do
     run "host fmu-$n: FMU through a test master" pass sh tests/host/test_fmu.sh \
         "$BUILD/fmu-$n/uuvsim.fmu" "$BUILD/linux-$n/uuvsim" "$BUILD/tools/fmu_import"
 done
+run "host uuvsim-decode on crafted streams" pass sh tests/host/test_decode.sh \
+    "$BUILD/tools/uuvsim-decode"
 run "host make run's plots (gnuplot)" pass sh tests/host/test_plots.sh "$BUILD/linux-float/uuvsim"
 run "host make run's dependencies, kept files" pass sh tests/host/test_make.sh
 run "host uuvsim view and --view in Chromium" pass sh tests/host/test_view.sh \

@@ -282,8 +282,8 @@ __attribute__((noinline)) static bool fw_init(const fw_args *a, const char *path
     }
     exec_status st = exec_init(&fw_exec, &cfg, &fw_scn);
     if (st != EXEC_OK) {
-        return fw_fail(st == EXEC_ERR_CONFIG ? "the frames, duration or options are out of range"
-                                             : "a model refused its parameters at these frames",
+        return fw_fail(st != EXEC_ERR_MODEL ? "the frames, duration or options are out of range"
+                                            : "a model refused its parameters at these frames",
                        "");
     }
 #if FW_FAST_KERNEL

@@ -178,8 +178,8 @@ static fmi2Status build(fmu_instance *c) {
     if (st != EXEC_OK) {
         s->built = false;
         return FAIL(c, "the executive refused the run: %s (stop time %.17g s)",
-                    st == EXEC_ERR_CONFIG ? "a frame, duration or option out of range"
-                                          : "a model refused its parameters",
+                    st != EXEC_ERR_MODEL ? "a frame, duration or option out of range"
+                                         : "a model refused its parameters",
                     s->scn.duration_s);
     }
     (void)exec_report_take(&s->e, &s->rec);

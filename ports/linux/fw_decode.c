@@ -218,6 +218,11 @@ static bool read_insn(const char *path, insn_counts *c) {
     char line[256];
     while (fgets(line, sizeof line, f) != NULL) {
         insn_stat s;
+        if (strchr(line, '-') != NULL) { /* %llu would take "-5" as 2^64 - 5 */
+            fprintf(stderr, "%s: %s: a negative count: %s", prog, path, line);
+            fclose(f);
+            return false;
+        }
         if (sscanf(line, "stat %63s count %llu min %llu max %llu sum %llu", s.name, &s.count,
                    &s.min, &s.max, &s.sum) == 5 &&
             c->n_stats < MAX_STATS) {
@@ -298,7 +303,7 @@ static void json_load(FILE *f, const insn_counts *c, const stream *s, int shift)
 /* ---- The summary -------------------------------------------------------------- */
 
 static const char *state_name(const tlm_end *e) {
-    if (e->overruns_fast + e->overruns_medium + e->overruns_control + e->overruns_slow > 0u) {
+    if ((e->overruns_fast | e->overruns_medium | e->overruns_control | e->overruns_slow) != 0u) {
         return "overrun";
     }
     return e->state == EXEC_DONE           ? "done"
@@ -316,12 +321,32 @@ static void json_final(FILE *f, const stream *s) {
             s->start.plant == EXEC_PLANT_FULL ? r->soc : 1.0);
 }
 
+/* A JSON string of at most n bytes of s (to its NUL): quotes, backslashes and controls escaped. */
+static void json_string(FILE *f, const char *s, size_t n) {
+    fputc('"', f);
+    for (size_t i = 0; i < n && s[i] != '\0'; i++) {
+        const unsigned char ch = (unsigned char)s[i];
+        if (ch == '"' || ch == '\\') {
+            fprintf(f, "\\%c", ch);
+        } else if (ch < 0x20u || ch == 0x7fu) {
+            fprintf(f, "\\u%04x", ch);
+        } else {
+            fputc(ch, f);
+        }
+    }
+    fputc('"', f);
+}
+
 static void json_summary(FILE *f, const options *o, const stream *s, const insn_counts *c) {
     const tlm_end *e = &s->end;
-    fprintf(f, "{\n  \"machine\": \"%s\",\n  \"build\": \"%s\",\n", s->start.machine,
+    fputs("{\n  \"machine\": ", f);
+    json_string(f, s->start.machine, sizeof s->start.machine);
+    fprintf(f, ",\n  \"build\": \"%s\",\n",
             s->start.numeric == UUV_NUMERIC_FLOAT ? "float" : "fixed");
     if (o->scenario != NULL) {
-        fprintf(f, "  \"scenario\": \"%s\",\n", o->scenario);
+        fputs("  \"scenario\": ", f);
+        json_string(f, o->scenario, strlen(o->scenario));
+        fputs(",\n", f);
     }
     if (o->shift >= 0) {
         fprintf(f, "  \"icount_shift\": %d,\n  \"ns_per_insn\": %u,\n", o->shift,
@@ -333,8 +358,9 @@ static void json_summary(FILE *f, const options *o, const stream *s, const insn_
                "\"slow\": %llu},\n",
             (unsigned long long)e->fast, (unsigned long long)e->medium,
             (unsigned long long)e->control, (unsigned long long)e->slow);
-    fprintf(f, "  \"overruns\": %u,\n",
-            e->overruns_fast + e->overruns_medium + e->overruns_control + e->overruns_slow);
+    fprintf(f, "  \"overruns\": %llu,\n", /* summed in 64 bits: it cannot wrap */
+            (unsigned long long)e->overruns_fast + e->overruns_medium + e->overruns_control +
+                e->overruns_slow);
     fprintf(f, "  \"overruns_by_rate\": {\"fast\": %u, \"motor\": %u, \"control\": %u, "
                "\"slow\": %u},\n",
             e->overruns_fast, e->overruns_medium, e->overruns_control, e->overruns_slow);

@@ -377,6 +377,44 @@ static void print_nonfinite(const exec *e) {
     fprintf(stderr, "\n");
 }
 
+/*
+ * exec_init's refusal, naming what to change: the duration (the option, or
+ * the scenario's line and field) or the slow frame.
+ */
+static void print_init_error(const cli_options *o, const scenario *scn, exec_status st) {
+    uint64_t ns[4];
+    cli_frames_ns(&o->exec, ns);
+    const double slow_s = 1e-9 * (double)ns[3];
+    const double report_s = o->exec.single_rate ? 0.1 : slow_s;
+    const double d = (o->exec.duration_s > 0.0) ? o->exec.duration_s : scn->duration_s;
+    char where[4200];
+    if (o->exec.duration_s > 0.0) {
+        snprintf(where, sizeof where, "option --duration");
+    } else {
+        snprintf(where, sizeof where, "%s:%u: field 'duration'", o->scenario_path,
+                 (unsigned)scn->duration_line);
+    }
+    if (st == EXEC_ERR_SLOW_FRAME) {
+        fprintf(stderr, "uuvsim: option --slow-frame: %.9g s is out of range: at most 10 s%s\n",
+                slow_s, o->exec.plant == EXEC_PLANT_VESSEL
+                            ? ", and at least 1 ms with --plant vessel (one vessel step per frame)"
+                            : "");
+    } else if (st == EXEC_ERR_DURATION_SHORT) {
+        fprintf(stderr, "uuvsim: %s: %.9g s is shorter than half a record period (%.9g s%s): "
+                "the run would have no record\n", where, d, report_s,
+                o->slow_frame_ns != 0u ? ", the --slow-frame" : "");
+    } else if (st == EXEC_ERR_DURATION_LONG) {
+        fprintf(stderr, "uuvsim: %s: %.9g s needs more than 2^32 - 1 %s frames: at most %.9g s\n",
+                where, d, o->exec.plant == EXEC_PLANT_FULL ? "motor" : "slow",
+                o->exec.plant == EXEC_PLANT_FULL ? 4294967295.0 * 1e-9 * (double)ns[1]
+                                                 : 4.0e9 * report_s);
+    } else {
+        fprintf(stderr, "uuvsim: %s\n",
+                st == EXEC_ERR_CONFIG ? "the frames, duration or options are out of range"
+                                      : "a model refused its parameters at these frames");
+    }
+}
+
 /* Sleeps until the wall clock reaches the simulated time t_s (from w0); the
  * live view serves its browsers in that time instead (and when late, once). */
 static void pace(run_result *r, double w0, double t_s, live_server *live) {
@@ -423,9 +461,7 @@ static int run(const cli_options *o) {
     static exec e;
     exec_status st = exec_init(&e, &o->exec, &scn);
     if (st != EXEC_OK) {
-        fprintf(stderr, "uuvsim: %s\n",
-                st == EXEC_ERR_CONFIG ? "the frames, duration or options are out of range"
-                                      : "a model refused its parameters at these frames");
+        print_init_error(o, &scn, st);
         return 2;
     }
     bool full = (o->exec.plant == EXEC_PLANT_FULL);

@@ -318,6 +318,30 @@ expect_error "derivs: a line longer than 8191 bytes is one line" \
 derivs_cr() { "$uuvsim" derivs "$tmp/cr_d.csv" | [ "$(wc -l)" -eq 2 ]; }
 check "derivs: a file of CR line ends reads as lines" derivs_cr
 
+# exec_init's range errors name the option or the scenario's line and field.
+printf 'duration 0.04\n' >"$tmp/d1.scn"
+expect_error "error: a duration shorter than half a record" \
+    "d1.scn:1: field 'duration': 0.04 s is shorter than half a record period" \
+    "$uuvsim" --scenario "$tmp/d1.scn" --csv "$tmp/bad.csv"
+printf '# long\nduration 1e6\n' >"$tmp/d2.scn"
+expect_error "error: a duration beyond the motor frames' counter" \
+    "d2.scn:2: field 'duration': 1000000 s needs more than 2\\^32 - 1 motor frames" \
+    "$uuvsim" --scenario "$tmp/d2.scn"
+expect_error "error: --duration too short for one record" \
+    "option --duration: 0.01 s is shorter than half a record period" \
+    "$uuvsim" --scenario "$tmp/d2.scn" --duration 0.01
+printf 'duration 2\n' >"$tmp/d3.scn"
+expect_error "error: --slow-frame 10s on a 2 s run" \
+    "d3.scn:1: field 'duration': 2 s is shorter than half a record period \\(10 s, the --slow-frame\\)" \
+    "$uuvsim" --scenario "$tmp/d3.scn" --slow-frame 10s
+expect_error "error: --slow-frame 800us with the vessel plant" \
+    "option --slow-frame: 0.0008 s is out of range: .*at least 1 ms with --plant vessel" \
+    "$uuvsim" --scenario "$tmp/d3.scn" --slow-frame 800us --plant vessel
+printf 'duration 2\nduration 3\n' >"$tmp/d4.scn"
+expect_error "error: a second duration line" \
+    "d4.scn:2: field 'duration': a second duration \\(the first is on line 1\\)" \
+    "$uuvsim" --scenario "$tmp/d4.scn"
+
 printf 'duration 1\nat 0 n_rpm=800\nat 0.5 leg_short=a\n' >"$tmp/fault.scn"
 expect_error "error: a fault the averaged inverter cannot model" \
     "fault.scn:3: field 'leg_short': the averaged inverter has no switches" \

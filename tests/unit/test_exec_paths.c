@@ -100,27 +100,27 @@ static void test_config_errors(void) {
     UT_EQ_INT(exec_init(&ex, &c, &scn), EXEC_ERR_CONFIG);
     config_small(&c);
     c.medium_per_slow = 200000u; /* a 20 s slow frame */
-    UT_EQ_INT(exec_init(&ex, &c, &scn), EXEC_ERR_CONFIG);
+    UT_EQ_INT(exec_init(&ex, &c, &scn), EXEC_ERR_SLOW_FRAME);
 
     UT_TEST("exec_init: a duration that is missing, too long for the frame counter or "
             "shorter than half a reporting period is refused");
     exec_config_default(&c);
     c.duration_s = 0.01; /* a tenth of the 100 ms reporting period */
-    UT_EQ_INT(exec_init(&ex, &c, &scn), EXEC_ERR_CONFIG);
+    UT_EQ_INT(exec_init(&ex, &c, &scn), EXEC_ERR_DURATION_SHORT);
     c.duration_s = 0.06; /* rounds to one reporting period */
     UT_EQ_INT(exec_init(&ex, &c, &scn), EXEC_OK);
     UT_EQ_INT(ex.frames, 1);
     c.duration_s = 1.0e9;
-    UT_EQ_INT(exec_init(&ex, &c, &scn), EXEC_ERR_CONFIG);
+    UT_EQ_INT(exec_init(&ex, &c, &scn), EXEC_ERR_DURATION_LONG);
     /* Single-rate: 50000 slow frames per record, 1e5 records overflow 32 bits. */
     c.duration_s = 1.0e4;
     c.single_rate = true;
-    UT_EQ_INT(exec_init(&ex, &c, &scn), EXEC_ERR_CONFIG);
+    UT_EQ_INT(exec_init(&ex, &c, &scn), EXEC_ERR_DURATION_LONG);
     c.duration_s = 1.0e3;
     UT_EQ_INT(exec_init(&ex, &c, &scn), EXEC_OK);
     UT_CHECK(load("at 0 n_rpm=1000\n")); /* no duration line */
     exec_config_default(&c);
-    UT_EQ_INT(exec_init(&ex, &c, &scn), EXEC_ERR_CONFIG);
+    UT_EQ_INT(exec_init(&ex, &c, &scn), EXEC_ERR_DURATION_SHORT);
     c.duration_s = 0.2;
     UT_EQ_INT(exec_init(&ex, &c, &scn), EXEC_OK);
 
@@ -129,7 +129,7 @@ static void test_config_errors(void) {
     UT_CHECK(load("duration 0.2\n"));
     config_vessel(&c);
     c.medium_per_slow = 8u; /* 0.8 ms */
-    UT_EQ_INT(exec_init(&ex, &c, &scn), EXEC_ERR_CONFIG);
+    UT_EQ_INT(exec_init(&ex, &c, &scn), EXEC_ERR_SLOW_FRAME);
     config_vessel(&c);
     c.fast_ns = 30000u; /* 6.7 steps per 5 kHz carrier: the modulator refuses */
     c.fast_per_medium = 20u;

@@ -176,6 +176,12 @@ static void test_status_text(void) {
 }
 
 void suite_telemetry(void) {
+    UT_TEST("frame sizes as docs/firmware.md gives them: payloads 56, 252 and 76 bytes, a "
+            "record frame 263 bytes");
+    UT_EQ_INT(TLM_START_PAYLOAD, 56);
+    UT_EQ_INT(TLM_RECORD_PAYLOAD, 252);
+    UT_EQ_INT(TLM_END_PAYLOAD, 76);
+    UT_EQ_INT(TLM_FRAME_MAX, 263);
     test_crc();
     test_record();
     test_start_end();
