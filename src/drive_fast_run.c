@@ -1,7 +1,7 @@
 /*
  * drive_fast_run(): the desk's runs of fast steps (drive_segment.h), for
- * either numeric build. On the real-time path (switching inverter, held
- * EMF, mean or sampled coupling: the drive's "plain" path) the step's
+ * either numeric build. On the real-time path (switching inverter without
+ * dead time, mean or sampled coupling: the drive's "plain" path) the step's
  * state is copied into locals, stepped n times and copied back, so that it
  * stays in registers between the steps instead of going through the drive
  * in memory each step. Any other path takes n drive_fast_step()s.
@@ -56,18 +56,17 @@ static inline float plain_companion(float i, float v, float e, float k_l) {
 static inline float plain_gain(const drive_segment *d) { return d->k_l; }
 #endif
 
-void drive_fast_run(drive_segment *d, uint32_t n) {
-    if (!d->plain || d->fast_now != NULL) {
-        for (uint32_t k = 0u; k < n; k++) {
-            drive_fast_step(d);
-        }
-        return;
-    }
+/*
+ * n real-time steps on the drive's state in locals; substep selects the
+ * modulator (a constant at each call, so that each call is its own loop).
+ */
+static inline void plain_run(drive_segment *d, uint32_t n, const bool substep) {
     pwm_rt rt = d->rt;
     int32_t s[3] = {d->s[0], d->s[1], d->s[2]};
     plain_stage ps = d->ps;
     plain_val i_fast[2] = {d->i_fast[0], d->i_fast[1]};
-    const plain_val e[2] = {d->e[0], d->e[1]};
+    plain_val e[2] = {d->e[0], d->e[1]};
+    const plain_val e_step[2] = {d->e_step[0], d->e_step[1]};
     const plain_val gain = plain_gain(d);
     plain_sum v_cap[2] = {d->sums.v_cap[0], d->sums.v_cap[1]};
     plain_sum v_dc = d->sums.v_dc;
@@ -76,11 +75,17 @@ void drive_fast_run(drive_segment *d, uint32_t n) {
         /* fast_tick_plain(): modulator, stage, then per filter phase its
          * companion and frame sum, then the DC link. */
         plain_fast f;
-        pwm_rt_step(&rt, s);
-        plain_begin(&ps, s, &f);
+        int32_t duty[3];
+        if (substep) {
+            pwm_rt_substep(&rt, s, duty);
+        } else {
+            pwm_rt_sampled(&rt, s, duty);
+        }
+        plain_begin(&ps, duty, &f);
         for (int x = 0; x < 2; x++) {
             plain_phase(&ps, &f, x, i_fast[x]);
             const plain_val v = ps.ph[x].v_c;
+            e[x] += e_step[x];
             i_fast[x] = plain_companion(i_fast[x], v, e[x], gain);
             v_cap[x] += v;
         }
@@ -94,7 +99,22 @@ void drive_fast_run(drive_segment *d, uint32_t n) {
     d->ps = ps;
     for (int x = 0; x < 2; x++) {
         d->i_fast[x] = i_fast[x];
+        d->e[x] = e[x];
         d->sums.v_cap[x] = v_cap[x];
     }
     d->sums.v_dc = v_dc;
+}
+
+void drive_fast_run(drive_segment *d, uint32_t n) {
+    if (!d->plain || d->fast_now != NULL) {
+        for (uint32_t k = 0u; k < n; k++) {
+            drive_fast_step(d);
+        }
+        return;
+    }
+    if (d->cfg.modulator == DRIVE_MODULATOR_SAMPLED) {
+        plain_run(d, n, false);
+    } else {
+        plain_run(d, n, true);
+    }
 }

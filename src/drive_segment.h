@@ -64,11 +64,17 @@
 
 /* Inverter model (the paper's layered model). */
 typedef enum {
-    DRIVE_INVERTER_SWITCHING = 0, /* six switches at the fast step, switch states held per step */
+    DRIVE_INVERTER_SWITCHING = 0, /* six switches at the fast step (drive_modulator) */
     DRIVE_INVERTER_AVERAGED,      /* leg duty cycles, quasi-static filter and DC link, run
                                    * with the motor at one frame (inverter_avg.h) */
     DRIVE_INVERTER_EVENT          /* switching instants located inside the fast step */
 } drive_inverter;
+
+/* How the switching inverter's modulator forms a step's pole voltages (pwm_rt.h). */
+typedef enum {
+    DRIVE_MODULATOR_SUBSTEP = 0, /* each leg's on-time inside the step, the step's mean applied */
+    DRIVE_MODULATOR_SAMPLED      /* the comparison at the step's start held over the step */
+} drive_modulator;
 
 /* How a slower segment's output is applied over the faster one's steps. */
 typedef enum {
@@ -87,6 +93,8 @@ typedef enum {
 
 typedef struct {
     drive_inverter inverter;
+    drive_modulator modulator; /* the switching inverter's (sub-step or sampled) */
+    uint32_t dead_time_ns;    /* [ns] the legs' dead time (sub-step only; 0: ideal switches) */
     coupling_down down;       /* motor currents to the fast segment */
     coupling_up up;           /* capacitor voltages to the motor, measurements to the slow segment */
     uint32_t fast_ns;         /* [ns] power-stage step (the frame of the averaged layer) */
@@ -293,6 +301,7 @@ struct drive_segment {
     bool uv_req;                /* the motor task saw an under-voltage (latched next) */
     bool plain_ok;              /* the configuration allows the real-time path */
     bool staggered;             /* the latch comes half a frame after the release */
+    bool kernel_ok;             /* the real-time path is the one a port's kernel computes */
     drive_fast_kernel *kernel;  /* a port's real-time step, or NULL (drive_use_fast_kernel) */
 };
 
@@ -387,6 +396,7 @@ struct drive_segment {
     bool uv_req;
     bool plain_ok;
     bool staggered;
+    bool kernel_ok;
     drive_fast_kernel *kernel;
 };
 
@@ -402,12 +412,14 @@ void drive_fast_tick(drive_segment *d);
 void drive_fast_run(drive_segment *d, uint32_t n);
 
 /*
- * Hands the real-time step (switching inverter with the held EMF and the
- * mean or sampled coupling, no faults: the drive's "plain" path) to a
- * port's kernel, or back to the C when kernel is NULL. The kernel must
- * compute what drive_fast_tick() computes there, bit for bit (ports/
- * cortexm's for ARMv7-M is tested against it); every other path stays the
- * C's. Call it after drive_init().
+ * Hands the real-time step to a port's kernel, or back to the C when
+ * kernel is NULL: the drive's "plain" path (switching inverter, no dead
+ * time, the mean or sampled coupling, no faults) with the sampled
+ * modulator and the held EMF (zoh, stagger), the step such a kernel
+ * computes. The kernel must compute what drive_fast_tick() computes there,
+ * bit for bit (ports/cortexm's for ARMv7-M is tested against it); every
+ * other path, the sub-step modulator's included, stays the C's. Call it
+ * after drive_init().
  */
 void drive_use_fast_kernel(drive_segment *d, drive_fast_kernel *kernel);
 

@@ -45,7 +45,9 @@ drive_status drive_init(drive_segment *d, const drive_config *cfg, const propell
     const bool averaged = (cfg->inverter == DRIVE_INVERTER_AVERAGED);
     if (cfg->fast_ns < 100u || cfg->fast_per_medium == 0u || cfg->medium_per_control == 0u ||
         cfg->fast_per_medium > 100000u || cfg->medium_per_slow == 0u ||
-        (averaged && cfg->fast_per_medium != 1u)) {
+        (averaged && cfg->fast_per_medium != 1u) ||
+        (cfg->modulator != DRIVE_MODULATOR_SUBSTEP && cfg->modulator != DRIVE_MODULATOR_SAMPLED) ||
+        (cfg->dead_time_ns != 0u && cfg->modulator != DRIVE_MODULATOR_SUBSTEP)) {
         return DRIVE_ERR_CONFIG;
     }
     *d = (drive_segment){0};
@@ -70,6 +72,7 @@ drive_status drive_init(drive_segment *d, const drive_config *cfg, const propell
     } else {
         if (pwm_init_q(&d->pwm, &pwm_located, cfg->fast_ns) != PWM_OK ||
             pwm_rt_init(&d->rt, &pwm_sampled, cfg->fast_ns) != PWM_OK ||
+            pwm_rt_dead_time(&d->rt, cfg->dead_time_ns, cfg->fast_ns) != PWM_OK ||
             power_stage_init_q(&d->ps, &d->ps_params, cfg->fast_ns,
                                cfg->v_dc0_v) != PS_OK) {
             return DRIVE_ERR_MODEL;
@@ -101,8 +104,9 @@ drive_status drive_init(drive_segment *d, const drive_config *cfg, const propell
     d->k_deriv = fp_from_f64_q31(6.283185307179586 * DRIVE_BASE_FREQ_HZ * fast_s /
                                  1.7320508075688772);
     d->plain_ok = (d->k32 != 0) && (cfg->inverter == DRIVE_INVERTER_SWITCHING) &&
-               (cfg->down == COUPLE_ZOH || cfg->down == COUPLE_STAGGER) &&
-               (cfg->up != COUPLE_FILTER) && !cfg->energy_audit;
+               (cfg->dead_time_ns == 0u) && (cfg->up != COUPLE_FILTER) && !cfg->energy_audit;
+    d->kernel_ok = (cfg->modulator == DRIVE_MODULATOR_SAMPLED) &&
+                   (cfg->down == COUPLE_ZOH || cfg->down == COUPLE_STAGGER);
     d->plain = d->plain_ok;
     d->staggered = drive_staggered(cfg->down, cfg->fast_per_medium);
     if (induction_motor_load_q(&d->motor, 1.0, &d->load_next) != INDUCTION_MOTOR_OK) {
@@ -179,28 +183,50 @@ static void audit_fast(drive_segment *d) {
 
 /*
  * Filter phase x of the real-time step, then at once the motor's fast
- * companion of that phase and its frame sum, so that little of the phase
+ * companion of that phase (its EMF moved first: e_step is zero unless the
+ * coupling extrapolates) and its frame sum, so that little of the phase
  * stays alive in registers for the next.
  */
 static inline void fast_phase_plain(drive_segment *d, ps_fast_q *f, int x) {
     power_stage_q *ps = &d->ps;
     ps_fast_phase_q(ps, f, x, d->i_fast[x]);
     const int32_t v = ps->ph[x].v_c;
+    const int32_t e = d->e[x] + d->e_step[x];
+    d->e[x] = e;
     /* i + round((v - e) k32 / 2^32): one multiply-accumulate per phase. */
-    d->i_fast[x] = ps_hi_q(ps_mac_q(ps_acc_q(d->i_fast[x]), v - d->e[x], d->k32));
+    d->i_fast[x] = ps_hi_q(ps_mac_q(ps_acc_q(d->i_fast[x]), v - e, d->k32));
     d->sums.v_cap[x] += v;
 }
 
 /*
- * The real-time step (switching inverter, held EMF, mean or sampled
- * coupling): modulator, power stage, the motor's fast companion and the
- * frame sums, nothing else.
+ * The real-time modulator's duties for the step (pwm_rt.h): sub-step, with
+ * the dead time when there is one (the leg currents at t_k decide which
+ * edges it delays), or sampled.
+ */
+static inline void rt_duties(drive_segment *d, int32_t duty[3]) {
+    if (d->cfg.modulator == DRIVE_MODULATOR_SAMPLED) {
+        pwm_rt_sampled(&d->rt, d->s, duty);
+    } else if (d->rt.kd == 0) {
+        pwm_rt_substep(&d->rt, d->s, duty);
+    } else {
+        const int32_t ia = d->ps.ph[0].i_l;
+        const int32_t ib = d->ps.ph[1].i_l;
+        const int32_t neg[3] = {ia < 0, ib < 0, ia + ib > 0};
+        pwm_rt_substep_dt(&d->rt, neg, d->s, duty);
+    }
+}
+
+/*
+ * The real-time step (switching inverter, no dead time, mean or sampled
+ * coupling, no faults): modulator, power stage, the motor's fast companion
+ * and the frame sums, nothing else.
  */
 static inline void fast_tick_plain(drive_segment *d) {
     power_stage_q *ps = &d->ps;
     ps_fast_q f;
-    pwm_rt_step(&d->rt, d->s);
-    ps_fast_begin_q(ps, d->s, &f);
+    int32_t duty[3];
+    rt_duties(d, duty);
+    ps_fast_begin_q(ps, duty, &f);
     fast_phase_plain(d, &f, 0);
     fast_phase_plain(d, &f, 1);
     ps_fast_end_q(ps, &d->in.battery, &f);
@@ -208,22 +234,28 @@ static inline void fast_tick_plain(drive_segment *d) {
 }
 
 /*
- * The leg states the faults leave (see drive_faults): a leg whose
- * commanded switch is open, or every leg once the protection has blocked
- * the gates, takes the state its diodes give: the upper diode conducts when
- * the inductor current flows into the leg (i_L < 0), the lower one
- * otherwise.
+ * The duties the faults leave (see drive_faults): a leg whose upper switch
+ * is open conducts where it is commanded on only through its upper diode,
+ * which it takes when the inductor current flows into the leg (i_L < 0);
+ * one whose lower switch is open, likewise where it is commanded off; once
+ * the protection has blocked the gates every leg is its diodes' (the upper
+ * for i_L < 0, the lower otherwise).
  */
-static void faulted_states(drive_segment *d) {
+static void faulted_duties(drive_segment *d, int32_t duty[3]) {
     const int32_t i_l[3] = {d->ps.ph[0].i_l, d->ps.ph[1].i_l,
                             -d->ps.ph[0].i_l - d->ps.ph[1].i_l};
     for (uint32_t x = 0u; x < 3u; x++) {
-        const int32_t diode = (i_l[x] < 0) ? 1 : 0;
-        const bool upper_open = d->fault.switch_open == 2u * x + 1u;
-        const bool lower_open = d->fault.switch_open == 2u * x + 2u;
-        if (d->trip != (uint8_t)DRIVE_TRIP_NONE || (upper_open && d->s[x] == 1) ||
-            (lower_open && d->s[x] == 0)) {
-            d->s[x] = diode;
+        const bool diode = i_l[x] < 0;
+        const int32_t by_diode = diode ? PWM_RT_DUTY_ONE : 0;
+        if (d->trip != (uint8_t)DRIVE_TRIP_NONE) {
+            duty[x] = by_diode;
+        } else if (d->fault.switch_open == 2u * x + 1u && !diode) {
+            duty[x] = 0;
+        } else if (d->fault.switch_open == 2u * x + 2u && diode) {
+            duty[x] = PWM_RT_DUTY_ONE;
+        }
+        if (duty[x] == 0 || duty[x] == PWM_RT_DUTY_ONE) {
+            d->s[x] = (duty[x] != 0) ? 1 : 0;
         }
     }
 }
@@ -239,11 +271,12 @@ static void fast_tick_general(drive_segment *d) {
         return; /* the averaged layer's stage runs at the boundary (drive_medium_begin) */
     }
     if (d->cfg.inverter == DRIVE_INVERTER_SWITCHING) {
-        /* The real-time step with the states the faults leave: the
+        /* The real-time step with the duties the faults leave: the
          * real-time path's results bit for bit when there are none. */
-        pwm_rt_step(&d->rt, d->s);
-        faulted_states(d);
-        ps_fast_step_call_q(&d->ps, &d->in.battery, d->s, d->i_fast[0], d->i_fast[1]);
+        int32_t duty[3];
+        rt_duties(d, duty);
+        faulted_duties(d, duty);
+        ps_fast_step_call_q(&d->ps, &d->in.battery, duty, d->i_fast[0], d->i_fast[1]);
     } else {
         pwm_step_q(&d->pwm, &d->pout);
         d->in.duty[0] = d->pout.duty[0];
@@ -287,7 +320,7 @@ void drive_fast_tick(drive_segment *d) {
 /* The real-time path on or off, and the step drive_fast_step() calls with it. */
 static void plain_set(drive_segment *d, bool plain) {
     d->plain = plain;
-    d->fast_now = plain ? d->kernel : NULL;
+    d->fast_now = (plain && d->kernel_ok) ? d->kernel : NULL;
 }
 
 void drive_use_fast_kernel(drive_segment *d, drive_fast_kernel *kernel) {
@@ -341,9 +374,9 @@ static inline void latch_apply(drive_segment *d) {
     d->i_fast[1] += o->corr[1];
     d->e[0] = o->e[0];
     d->e[1] = o->e[1];
+    d->e_step[0] = o->de[0];
+    d->e_step[1] = o->de[1];
     if (!d->plain) {
-        d->e_step[0] = o->de[0];
-        d->e_step[1] = o->de[1];
         if (d->out.cmd_new) {
             pwm_command_inc_q(d->mod, o->cmd.m, o->cmd.phase_inc);
             d->out.cmd_new = false;

@@ -20,7 +20,9 @@ drive_status drive_init(drive_segment *d, const drive_config *cfg, const propell
     const bool averaged = (cfg->inverter == DRIVE_INVERTER_AVERAGED);
     if (cfg->fast_ns < 100u || cfg->fast_per_medium == 0u || cfg->medium_per_control == 0u ||
         cfg->fast_per_medium > 100000u || cfg->medium_per_slow == 0u ||
-        (averaged && cfg->fast_per_medium != 1u)) {
+        (averaged && cfg->fast_per_medium != 1u) ||
+        (cfg->modulator != DRIVE_MODULATOR_SUBSTEP && cfg->modulator != DRIVE_MODULATOR_SAMPLED) ||
+        (cfg->dead_time_ns != 0u && cfg->modulator != DRIVE_MODULATOR_SUBSTEP)) {
         return DRIVE_ERR_CONFIG;
     }
     *d = (drive_segment){0};
@@ -45,6 +47,7 @@ drive_status drive_init(drive_segment *d, const drive_config *cfg, const propell
     } else {
         if (pwm_init_f32(&d->pwm, &pwm_located, cfg->fast_ns) != PWM_OK ||
             pwm_rt_init(&d->rt, &pwm_sampled, cfg->fast_ns) != PWM_OK ||
+            pwm_rt_dead_time(&d->rt, cfg->dead_time_ns, cfg->fast_ns) != PWM_OK ||
             power_stage_init_f32(&d->ps, &d->ps_params, cfg->fast_ns,
                                  cfg->v_dc0_v) != PS_OK) {
             return DRIVE_ERR_MODEL;
@@ -69,9 +72,10 @@ drive_status drive_init(drive_segment *d, const drive_config *cfg, const propell
     }
     d->filt_k = 1.0f / (float)cfg->fast_per_medium;
     d->k_deriv = (float)(6.283185307179586 * fast_s / 1.7320508075688772);
-    d->plain_ok = (cfg->inverter == DRIVE_INVERTER_SWITCHING) &&
-               (cfg->down == COUPLE_ZOH || cfg->down == COUPLE_STAGGER) &&
+    d->plain_ok = (cfg->inverter == DRIVE_INVERTER_SWITCHING) && (cfg->dead_time_ns == 0u) &&
                (cfg->up != COUPLE_FILTER) && !cfg->energy_audit;
+    d->kernel_ok = (cfg->modulator == DRIVE_MODULATOR_SAMPLED) &&
+                   (cfg->down == COUPLE_ZOH || cfg->down == COUPLE_STAGGER);
     d->plain = d->plain_ok;
     d->staggered = drive_staggered(cfg->down, cfg->fast_per_medium);
     if (induction_motor_load_f32(&d->motor, 1.0, &d->load_next) != INDUCTION_MOTOR_OK) {
@@ -92,16 +96,33 @@ static inline void fast_phase_plain(drive_segment *d, ps_fast_f32 *f, int x) {
     power_stage_f32 *ps = &d->ps;
     ps_fast_phase_f32(ps, f, x, d->i_fast[x]);
     const float v = ps->ph[x].v_c;
-    d->i_fast[x] += (v - d->e[x]) * d->k_l;
+    const float e = d->e[x] + d->e_step[x];
+    d->e[x] = e;
+    d->i_fast[x] += (v - e) * d->k_l;
     d->sums.v_cap[x] += v;
+}
+
+/* The real-time modulator's duties (as in drive_segment_fixed.c). */
+static inline void rt_duties(drive_segment *d, int32_t duty[3]) {
+    if (d->cfg.modulator == DRIVE_MODULATOR_SAMPLED) {
+        pwm_rt_sampled(&d->rt, d->s, duty);
+    } else if (d->rt.kd == 0) {
+        pwm_rt_substep(&d->rt, d->s, duty);
+    } else {
+        const float ia = d->ps.ph[0].i_l;
+        const float ib = d->ps.ph[1].i_l;
+        const int32_t neg[3] = {ia < 0.0f, ib < 0.0f, -ia - ib < 0.0f};
+        pwm_rt_substep_dt(&d->rt, neg, d->s, duty);
+    }
 }
 
 /* The real-time step (as in drive_segment_fixed.c). */
 static inline void fast_tick_plain(drive_segment *d) {
     power_stage_f32 *ps = &d->ps;
     ps_fast_f32 f;
-    pwm_rt_step(&d->rt, d->s);
-    ps_fast_begin_f32(ps, d->s, &f);
+    int32_t duty[3];
+    rt_duties(d, duty);
+    ps_fast_begin_f32(ps, duty, &f);
     fast_phase_plain(d, &f, 0);
     fast_phase_plain(d, &f, 1);
     ps_fast_end_f32(ps, &d->in.battery, &f);
@@ -131,16 +152,21 @@ static void audit_fast(drive_segment *d) {
     d->sums.loss_d += ps->ph[0].i_d * ps->ph[0].i_d + ps->ph[1].i_d * ps->ph[1].i_d + r2 * r2;
 }
 
-/* The leg states the faults leave (as in drive_segment_fixed.c). */
-static void faulted_states(drive_segment *d) {
+/* The duties the faults leave (as in drive_segment_fixed.c). */
+static void faulted_duties(drive_segment *d, int32_t duty[3]) {
     const float i_l[3] = {d->ps.ph[0].i_l, d->ps.ph[1].i_l, -d->ps.ph[0].i_l - d->ps.ph[1].i_l};
     for (uint32_t x = 0u; x < 3u; x++) {
-        const int32_t diode = (i_l[x] < 0.0f) ? 1 : 0;
-        const bool upper_open = d->fault.switch_open == 2u * x + 1u;
-        const bool lower_open = d->fault.switch_open == 2u * x + 2u;
-        if (d->trip != (uint8_t)DRIVE_TRIP_NONE || (upper_open && d->s[x] == 1) ||
-            (lower_open && d->s[x] == 0)) {
-            d->s[x] = diode;
+        const bool diode = i_l[x] < 0.0f;
+        const int32_t by_diode = diode ? PWM_RT_DUTY_ONE : 0;
+        if (d->trip != (uint8_t)DRIVE_TRIP_NONE) {
+            duty[x] = by_diode;
+        } else if (d->fault.switch_open == 2u * x + 1u && !diode) {
+            duty[x] = 0;
+        } else if (d->fault.switch_open == 2u * x + 2u && diode) {
+            duty[x] = PWM_RT_DUTY_ONE;
+        }
+        if (duty[x] == 0 || duty[x] == PWM_RT_DUTY_ONE) {
+            d->s[x] = (duty[x] != 0) ? 1 : 0;
         }
     }
 }
@@ -156,10 +182,11 @@ static void fast_tick_general(drive_segment *d) {
         return; /* the averaged layer's stage runs at the boundary (drive_medium_begin) */
     }
     if (d->cfg.inverter == DRIVE_INVERTER_SWITCHING) {
-        /* As in drive_segment_fixed.c: the real-time step with the faults' states. */
-        pwm_rt_step(&d->rt, d->s);
-        faulted_states(d);
-        ps_fast_step_call_f32(&d->ps, &d->in.battery, d->s, d->i_fast[0], d->i_fast[1]);
+        /* As in drive_segment_fixed.c: the real-time step with the faults' duties. */
+        int32_t duty[3];
+        rt_duties(d, duty);
+        faulted_duties(d, duty);
+        ps_fast_step_call_f32(&d->ps, &d->in.battery, duty, d->i_fast[0], d->i_fast[1]);
     } else {
         pwm_step_f32(&d->pwm, &d->pout);
         d->in.duty[0] = d->pout.duty[0];
@@ -202,7 +229,7 @@ void drive_fast_tick(drive_segment *d) {
 /* The real-time path on or off, and the step drive_fast_step() calls with it. */
 static void plain_set(drive_segment *d, bool plain) {
     d->plain = plain;
-    d->fast_now = plain ? d->kernel : NULL;
+    d->fast_now = (plain && d->kernel_ok) ? d->kernel : NULL;
 }
 
 void drive_use_fast_kernel(drive_segment *d, drive_fast_kernel *kernel) {
@@ -250,9 +277,9 @@ static inline void latch_apply(drive_segment *d) {
     d->i_fast[1] += o->corr[1];
     d->e[0] = o->e[0];
     d->e[1] = o->e[1];
+    d->e_step[0] = o->de[0];
+    d->e_step[1] = o->de[1];
     if (!d->plain) {
-        d->e_step[0] = o->de[0];
-        d->e_step[1] = o->de[1];
         if (d->out.cmd_new) {
             pwm_command_inc_f32(d->mod, o->cmd.m, o->cmd.phase_inc);
             d->out.cmd_new = false;

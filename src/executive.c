@@ -25,7 +25,9 @@ void exec_config_default(exec_config *cfg) {
     cfg->plant = EXEC_PLANT_FULL;
     cfg->propulsion = VESSEL_PROP_PAPER;
     cfg->inverter = DRIVE_INVERTER_SWITCHING;
-    cfg->down = COUPLE_ZOH;
+    cfg->modulator = DRIVE_MODULATOR_SUBSTEP;
+    cfg->dead_time_ns = 0u;
+    cfg->down = COUPLE_FOH;
     cfg->up = COUPLE_AVG;
     cfg->soc0 = 1.0;
     cfg->fast_ns = 2000u;
@@ -254,6 +256,8 @@ static exec_status init_drive(exec *e) {
     drive_battery b0 = {bc.g_s, bc.b_a};
     drive_config dc;
     dc.inverter = c->inverter;
+    dc.modulator = c->modulator;
+    dc.dead_time_ns = c->dead_time_ns;
     dc.down = c->down;
     dc.up = c->up;
     dc.fast_ns = c->fast_ns;

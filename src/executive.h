@@ -68,6 +68,8 @@ typedef struct {
     exec_plant plant;
     vessel_propulsion propulsion;
     drive_inverter inverter;
+    drive_modulator modulator; /* the switching inverter's: sub-step (default) or sampled */
+    uint32_t dead_time_ns; /* [ns] the inverter legs' dead time (sub-step only); 0: ideal */
     coupling_down down;
     coupling_up up;
     bool single_rate;
@@ -204,7 +206,10 @@ typedef struct {
 
 extern const char *const exec_command_names[EXEC_NCMD];
 
-/* Default: full plant, paper propulsion, switching inverter, ZOH/average, 2 us/100 us/800 us/100 ms. */
+/*
+ * Default: full plant, paper propulsion, switching inverter with the
+ * sub-step modulator and no dead time, FOH/average, 2 us/100 us/800 us/100 ms.
+ */
 void exec_config_default(exec_config *cfg);
 
 /* Checks the configuration against the scenario and initialises every model. */

@@ -23,18 +23,29 @@ const char cli_usage[] =
     "                           alone with the shaft speed through its 0.1 s lag\n"
     "  --propulsion paper|mss   thrust law (default paper)\n"
     "  --inverter switching|averaged|event\n"
-    "                           switching: switch states held over each 2 us step;\n"
+    "                           switching: six switches at the 2 us step (see\n"
+    "                           --modulator);\n"
     "                           averaged: leg duty cycles, quasi-static filter, the\n"
     "                           stage and the motor at the controller's 800 us frame\n"
     "                           (no switch, leg, phase or contactor faults);\n"
     "                           event: switching instants located inside the step\n"
+    "  --modulator substep|sampled\n"
+    "                           the switching inverter's: substep (default): each\n"
+    "                           leg's on-time located inside the step, the step's\n"
+    "                           mean pole voltage applied; sampled: the switch\n"
+    "                           states at the step's start held over the step\n"
+    "  --dead-time T            both switches of a leg off for T at every edge (the\n"
+    "                           pole then follows the current's diode), with its\n"
+    "                           unit, at most 10us; switching inverter, substep\n"
+    "                           modulator; default none\n"
     "  --single-rate            every segment at 2 us (the reference)\n"
     "  --deep-water             no free surface (the reference vessel of the vectors:\n"
     "                           buoyancy B wherever the vehicle is)\n"
     "  --energy-audit           count the filter's and the motor's losses and print\n"
     "                           the energy balance (slower: the general fast path)\n"
     "  --slow-to-fast zoh|foh|deriv|stagger\n"
-    "                           how the motor's currents reach the 2 us steps\n"
+    "                           how the motor's EMF reaches the 2 us steps\n"
+    "                           (default foh)\n"
     "  --fast-to-slow avg|filter|sample\n"
     "                           how fast signals are reduced for slower segments\n"
     "  --motor-frame T          the motor task's frame (default 100us), a whole\n"
@@ -107,6 +118,8 @@ static const opt_spec options[] = {
     {"--plant", OPT_CHOICE, "vessel|full", FIELD(exec.plant)},
     {"--propulsion", OPT_CHOICE, "mss|paper", FIELD(exec.propulsion)},
     {"--inverter", OPT_CHOICE, "switching|averaged|event", FIELD(exec.inverter)},
+    {"--modulator", OPT_CHOICE, "substep|sampled", FIELD(exec.modulator)},
+    {"--dead-time", OPT_FRAME, NULL, FIELD(dead_time_ns)},
     {"--slow-to-fast", OPT_CHOICE, "zoh|foh|deriv|stagger", FIELD(exec.down)},
     {"--fast-to-slow", OPT_CHOICE, "avg|filter|sample", FIELD(exec.up)},
     {"--motor-frame", OPT_FRAME, NULL, FIELD(motor_frame_ns)},
@@ -357,6 +370,18 @@ bool cli_parse(int argc, char **argv, cli_options *o, char *err, size_t err_len)
     }
     if (o->view) {
         o->realtime = true;
+    }
+    if (o->dead_time_ns != 0u) {
+        if (o->dead_time_ns > 10000u) {
+            return fail(err, err_len, "option --dead-time: expected at most 10us, got %.9gus",
+                        1e-3 * (double)o->dead_time_ns);
+        }
+        if (o->exec.inverter != DRIVE_INVERTER_SWITCHING ||
+            o->exec.modulator != DRIVE_MODULATOR_SUBSTEP) {
+            return fail(err, err_len, "option --dead-time: needs --inverter switching and "
+                                      "--modulator substep");
+        }
+        o->exec.dead_time_ns = (uint32_t)o->dead_time_ns;
     }
     if (o->trace_path != NULL) {
         if (o->exec.plant != EXEC_PLANT_FULL) {

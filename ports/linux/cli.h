@@ -27,6 +27,7 @@ typedef struct {
     uint64_t motor_frame_ns;    /* --motor-frame; 0: the default (exec_config_default) */
     uint64_t control_frame_ns;  /* --control-frame; 0: the default */
     uint64_t slow_frame_ns;     /* --slow-frame; 0: the default */
+    uint64_t dead_time_ns;      /* --dead-time; 0: none */
     bool realtime;
     bool view;                  /* --view: the live view (implies --realtime) */
     double view_port;           /* --view-port: its port on 127.0.0.1 (0: any free one) */

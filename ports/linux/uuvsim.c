@@ -104,6 +104,7 @@ static const char *const plant_names[] = {"vessel", "full"};
 static const char *const law_names[] = {"mss", "paper"};
 static const char *const inverter_names[] = {"switching", "averaged", "event"};
 static const char *const down_names[] = {"zoh", "foh", "deriv", "stagger"};
+static const char *const modulator_names[] = {"substep", "sampled"};
 static const char *const up_names[] = {"avg", "filter", "sample"};
 
 /* The mode: a vessel-only run has one frame, neither multi- nor single-rate. */
@@ -178,6 +179,8 @@ static void print_json(FILE *f_out, const run_result *r) {
     fprintf(f_out, "  \"plant\": \"%s\",\n  \"propulsion\": \"%s\",\n  \"inverter\": \"%s\",\n",
            plant_names[e->cfg.plant], law_names[e->cfg.propulsion],
            inverter_names[e->cfg.inverter]);
+    fprintf(f_out, "  \"modulator\": \"%s\",\n  \"dead_time_s\": %.9g,\n",
+            modulator_names[e->cfg.modulator], 1e-9 * (double)e->cfg.dead_time_ns);
     fprintf(f_out, "  \"slow_to_fast\": \"%s\",\n  \"fast_to_slow\": \"%s\",\n", down_names[e->cfg.down],
            up_names[e->cfg.up]);
     /* The frames the run used (a single-rate run steps every segment at the fast one). */
@@ -256,8 +259,15 @@ static void print_text(const run_result *r) {
     printf("uuvsim %s, %s build, %s: plant %s, propulsion %s", UUVSIM_VERSION, UUV_NUMERIC_NAME,
            mode_name(e), plant_names[e->cfg.plant], law_names[e->cfg.propulsion]);
     if (e->cfg.plant == EXEC_PLANT_FULL) {
-        printf(", inverter %s, couplings %s/%s", inverter_names[e->cfg.inverter],
-               down_names[e->cfg.down], up_names[e->cfg.up]);
+        printf(", inverter %s", inverter_names[e->cfg.inverter]);
+        if (e->cfg.inverter == DRIVE_INVERTER_SWITCHING) {
+            printf(" (modulator %s", modulator_names[e->cfg.modulator]);
+            if (e->cfg.dead_time_ns != 0u) {
+                printf(", dead time %.9g us", 1e-3 * (double)e->cfg.dead_time_ns);
+            }
+            printf(")");
+        }
+        printf(", couplings %s/%s", down_names[e->cfg.down], up_names[e->cfg.up]);
     }
     uint64_t ns[4];
     char t[4][32];

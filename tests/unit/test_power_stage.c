@@ -902,14 +902,23 @@ static void test_setup_and_outputs(void) {
 }
 
 /*
- * The fast step with held switch states (power_stage_fast.h) against the
- * general step: states from the real-time modulator (pwm_rt.h, m = 0.9 at
- * 50 Hz, ramps over 50-step frames), the general step given the same
- * states as duties of 0 or 1, on two copies of the same instance with the
- * same motor currents (a 50 Hz set of the given amplitude); every state and
- * the clamp count compared bit for bit after every step.
+ * The fast step (power_stage_fast.h) against the general step: duties from
+ * the real-time modulator (pwm_rt.h, sampled or sub-step, m = 0.9 at 50 Hz,
+ * ramps over 50-step frames), the general step given the same duties, on
+ * two copies of the same instance with the same motor currents (a 50 Hz
+ * set of the given amplitude); every state and the clamp count compared bit
+ * for bit after every step.
  */
-static void test_fused_step(int fixed, double amp_a, uint32_t steps) {
+static void rt_duties(pwm_rt *rt, int substep, int32_t duty[3]) {
+    int32_t st[3];
+    if (substep) {
+        pwm_rt_substep(rt, st, duty);
+    } else {
+        pwm_rt_sampled(rt, st, duty);
+    }
+}
+
+static void test_fused_step(int fixed, int substep, double amp_a, uint32_t steps) {
     static const pwm_params sampled = {5000.0, PWM_EDGES_SAMPLED, 0u, 0u};
     const uint32_t inc = wt_phase_inc_q16(50 * 65536, STEP_NS);
     uint32_t k;
@@ -935,9 +944,9 @@ static void test_fused_step(int fixed, double amp_a, uint32_t steps) {
             }
             in.i_motor[0] = fp_from_f64_q15(amp_a / 256.0 * math_sin_f64(w));
             in.i_motor[1] = fp_from_f64_q15(amp_a / 256.0 * math_sin_f64(w - 2.0 * PI_D / 3.0));
-            pwm_rt_step(&rt, st);
+            rt_duties(&rt, substep, st);
             for (unsigned x = 0u; x < 3u; x++) {
-                in.duty[x] = st[x] * PWM_DUTY_ONE_Q;
+                in.duty[x] = st[x];
             }
             power_stage_step_q(&sa, &in);
             ps_fast_step_q(&sb, &in.battery, st, (int32_t)in.i_motor[0] * 8192,
@@ -967,9 +976,9 @@ static void test_fused_step(int fixed, double amp_a, uint32_t steps) {
             }
             in.i_motor_a[0] = (float)amp_a * math_sin_f32(w);
             in.i_motor_a[1] = (float)amp_a * math_sin_f32(w - 2.0943951f);
-            pwm_rt_step(&rt, st);
+            rt_duties(&rt, substep, st);
             for (unsigned x = 0u; x < 3u; x++) {
-                in.duty[x] = (float)st[x];
+                in.duty[x] = (float)st[x] / 32768.0f;
             }
             power_stage_step_f32(&sa, &in);
             ps_fast_step_f32(&sb, &in.battery, st, in.i_motor_a[0], in.i_motor_a[1]);
@@ -982,8 +991,9 @@ static void test_fused_step(int fixed, double amp_a, uint32_t steps) {
         }
         sat = sb.sat_count;
     }
-    ut_info("held-state step, %s, %u steps at %g A: identical %d, clamps %u",
-            fixed ? "fixed" : "float", (unsigned)steps, amp_a, same, (unsigned)sat);
+    ut_info("fast step, %s modulator, %s, %u steps at %g A: identical %d, clamps %u",
+            substep ? "sub-step" : "sampled", fixed ? "fixed" : "float", (unsigned)steps, amp_a,
+            same, (unsigned)sat);
     UT_CHECK(same);
     UT_CHECK((amp_a > 256.0) == (sat > 0u));
 }
@@ -1023,10 +1033,13 @@ void suite_power_stage(void) {
     }
     UT_TEST("parameter checks, battery conversion, outputs and sign conventions");
     test_setup_and_outputs();
-    UT_TEST("stage step with held switch states equals power_stage_step with duties 0 or 1, "
-            "bit for bit, clamps included");
+    UT_TEST("fast stage step with the real-time modulator's duties (sampled: 0 or 1; "
+            "sub-step) equals power_stage_step with the same duties, bit for bit, clamps "
+            "included");
     for (fixed = 1; fixed >= 0; fixed--) {
-        test_fused_step(fixed, 120.0, 20000u);
-        test_fused_step(fixed, 400.0, 2000u);
+        for (int substep = 0; substep <= 1; substep++) {
+            test_fused_step(fixed, substep, 120.0, 20000u);
+            test_fused_step(fixed, substep, 400.0, 2000u);
+        }
     }
 }

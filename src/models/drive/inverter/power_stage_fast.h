@@ -1,19 +1,21 @@
 /*
- * The power stage's 2 us step for switch states held over the step (the
- * real-time modulator of pwm_rt.h), in one inline function per twin, for
- * the executive's fast tick. It computes exactly what power_stage_step_q()
- * computes with duties of 0 or 1 (and the same for the float twins), bit
- * for bit; tests/unit/test_power_stage.c checks that over long runs. Only
- * the work is specialised, never the arithmetic:
+ * The power stage's 2 us step for the real-time modulator (pwm_rt.h), in
+ * inline pieces per twin, for the executive's fast tick. It computes
+ * exactly what power_stage_step_q() computes with the same duties (and the
+ * same for the float twins), bit for bit; tests/unit/test_power_stage.c
+ * checks that over long runs. The duties are the legs' on-times over the
+ * step (Q15, 32768 = the step, in both builds: the modulator is integer),
+ * so the stage applies the step-averaged pole voltages and DC-link
+ * current: sub-step switching, or held states as duties of 0 or 32768.
+ * Only the work is arranged for the tick, never the arithmetic:
  *
- *   - Held duties are 0 or 1, so the inverter voltages are n_x v_dc / 3
- *     with n_x = 2 s_x - s_y - s_z in {-2, ..., 2}: in the fixed twin the
- *     general product (8 v3) (n_x 2^29) / 2^32 rounded is exactly n_x v3,
- *     and the DC-link current's rounded product sum is floor((T + 1) / 2)
- *     with T = (s_a - s_c) S_a + (s_b - s_c) S_b (S_x the sum of the old
- *     and new inductor currents; |T| <= 2^30 with the states clamped). In
- *     the float twin the small integer factors are exact, so the general
- *     expressions round alike.
+ *   - The inverter voltages are ps_inverter_q()'s; with held duties its
+ *     rounded product is exactly n_x v_dc / 3.
+ *   - The DC-link current's product sum is formed phase by phase as
+ *     T = dd_a S_a + dd_b S_b in 64 bits (dd_x = d_x - d_c in Q15 units,
+ *     S_x the sum of the old and new inductor currents) and rounded once,
+ *     floor((T + 2^15) / 2^16): the high word ps_dc_current_q() takes of
+ *     2^16 T + 2^31.
  *   - The motor currents come in the stage's own format (Q3.28 in the
  *     fixed twin), so nothing is narrowed or widened per step.
  *   - The filter phases and the DC link are the inline pieces of
@@ -30,20 +32,16 @@
 
 /* What the pieces of one step carry between them (fixed twin). */
 typedef struct {
-    int32_t dd[2]; /* s_a - s_c, s_b - s_c */
-    int32_t t;     /* the DC-link current's sum T, formed phase by phase */
+    int32_t dd[2]; /* d_a - d_c, d_b - d_c, Q15 units */
+    int64_t t;     /* the DC-link current's sum T, formed phase by phase */
     uint32_t sat;  /* the stage's clamp count, kept in a local */
 } ps_fast_q;
 
-/* Start of a step with the held states s[x] in {0, 1}: inverter voltages. */
-static inline void ps_fast_begin_q(power_stage_q *ps, const int32_t s[3], ps_fast_q *f) {
-    const int32_t sc = s[2];
-    /* Inverter: u_x = n_x v_dc / 3, v_dc / 3 rounded as in ps_inverter_q(). */
-    const int32_t v3 = ps_hi_q(ps_mac_q(ps_acc_q(0), ps->v_dc, 0x55555555));
-    ps->u[0] = (2 * s[0] - s[1] - sc) * v3;
-    ps->u[1] = (2 * s[1] - s[0] - sc) * v3;
-    f->dd[0] = s[0] - sc;
-    f->dd[1] = s[1] - sc;
+/* Start of a step with the duties duty[x] (Q15, 0..32768): inverter voltages. */
+static inline void ps_fast_begin_q(power_stage_q *ps, const int32_t duty[3], ps_fast_q *f) {
+    ps_inverter_q(ps->v_dc, duty, &ps->u[0], &ps->u[1]);
+    f->dd[0] = duty[0] - duty[2];
+    f->dd[1] = duty[1] - duty[2];
     f->t = 0;
     f->sat = ps->sat_count;
 }
@@ -61,29 +59,29 @@ static inline void ps_fast_phase_q(power_stage_q *ps, ps_fast_q *f, int x, int32
     ps_filter_history_q(k, ph, ps->u[x], &h);
     const int32_t dv = ps_filter_node_q(k, ph, &h, im);
     ps_filter_update_q(k, ph, &h, dv, im, &f->sat);
-    f->t += f->dd[x] * (i0 + ph->i_l);
+    f->t += (int64_t)f->dd[x] * (i0 + ph->i_l);
 }
 
 /* End of the step: the DC-link current and the DC link with the battery bat. */
 static inline void ps_fast_end_q(power_stage_q *ps, const ps_battery_q *bat, const ps_fast_q *f) {
     uint32_t sat = f->sat;
-    /* DC-link current: floor((T + 1) / 2), |T| <= 2^30 (see above). */
-    const int32_t i_dc = fp_shr_floor_i32(f->t + 1, 1u);
+    /* DC-link current: floor((T + 2^15) / 2^16), |T| <= 2^46 (see above). */
+    const int32_t i_dc = (int32_t)fp_shr_floor_i64(f->t + 32768, 16u);
     ps->v_dc = ps_dclink_step_q(ps->v_dc, bat, ps->k.neg_k_c, i_dc, &sat);
     ps->i_dc = i_dc;
     ps->sat_count = sat;
 }
 
 /*
- * One step, fixed twin: power_stage_step_q() with the duties s[x] * 32768
- * (s[x] in {0, 1}, held over the step), the motor currents im_a, im_b
+ * One step, fixed twin: power_stage_step_q() with the duties duty[x] (Q15),
+ * the motor currents im_a, im_b
  * (Q3.28 of 256 A) and the battery bat. Integer only, no division; total
  * (the stage clamps and counts as in power_stage_step_q()).
  */
-static inline void ps_fast_step_q(power_stage_q *ps, const ps_battery_q *bat, const int32_t s[3],
+static inline void ps_fast_step_q(power_stage_q *ps, const ps_battery_q *bat, const int32_t duty[3],
                                   int32_t im_a, int32_t im_b) {
     ps_fast_q f;
-    ps_fast_begin_q(ps, s, &f);
+    ps_fast_begin_q(ps, duty, &f);
     ps_fast_phase_q(ps, &f, 0, im_a);
     ps_fast_phase_q(ps, &f, 1, im_b);
     ps_fast_end_q(ps, bat, &f);
@@ -91,22 +89,21 @@ static inline void ps_fast_step_q(power_stage_q *ps, const ps_battery_q *bat, co
 
 /*
  * The float twins of the pieces and of ps_fast_step_q(): power_stage_step_f32()
- * with duties s[x] (0 or 1), its expressions rounded in its order.
+ * with the duties duty[x] / 32768, its expressions rounded in its order.
  */
 typedef struct {
-    float dd[2];  /* s_a - s_c, s_b - s_c (exact) */
+    float dd[2];  /* d_a - d_c, d_b - d_c */
     float t;      /* the DC-link current's sum, formed phase by phase */
     uint32_t sat; /* the stage's clamp count, kept in a local */
 } ps_fast_f32;
 
-static inline void ps_fast_begin_f32(power_stage_f32 *ps, const int32_t s[3], ps_fast_f32 *f) {
-    const int32_t sc = s[2];
-    /* (2 d_x - d_y) - d_z with d in {0, 1} is the small integer n_x, exactly. */
-    const float v3 = ps->v_dc * (1.0f / 3.0f);
-    ps->u[0] = v3 * (float)(2 * s[0] - s[1] - sc);
-    ps->u[1] = v3 * (float)(2 * s[1] - s[0] - sc);
-    f->dd[0] = (float)(s[0] - sc);
-    f->dd[1] = (float)(s[1] - sc);
+/* The duties in [0, 1], from the modulator's Q15 (exact in single precision). */
+static inline void ps_fast_begin_f32(power_stage_f32 *ps, const int32_t duty[3], ps_fast_f32 *f) {
+    const float dq[3] = {(float)duty[0] * (1.0f / 32768.0f), (float)duty[1] * (1.0f / 32768.0f),
+                         (float)duty[2] * (1.0f / 32768.0f)};
+    ps_inverter_f32(ps->v_dc, dq, &ps->u[0], &ps->u[1]);
+    f->dd[0] = dq[0] - dq[2];
+    f->dd[1] = dq[1] - dq[2];
     f->t = 0.0f;
     f->sat = ps->sat_count;
 }
@@ -135,9 +132,9 @@ static inline void ps_fast_end_f32(power_stage_f32 *ps, const ps_battery_f32 *ba
 }
 
 static inline void ps_fast_step_f32(power_stage_f32 *ps, const ps_battery_f32 *bat,
-                                    const int32_t s[3], float im_a, float im_b) {
+                                    const int32_t duty[3], float im_a, float im_b) {
     ps_fast_f32 f;
-    ps_fast_begin_f32(ps, s, &f);
+    ps_fast_begin_f32(ps, duty, &f);
     ps_fast_phase_f32(ps, &f, 0, im_a);
     ps_fast_phase_f32(ps, &f, 1, im_b);
     ps_fast_end_f32(ps, bat, &f);
@@ -147,9 +144,9 @@ static inline void ps_fast_step_f32(power_stage_f32 *ps, const ps_battery_f32 *b
  * The same steps out of line (power_stage_step.c), for callers that are not
  * the real-time path: one inlined copy there, one call everywhere else.
  */
-void ps_fast_step_call_q(power_stage_q *ps, const ps_battery_q *bat, const int32_t s[3],
+void ps_fast_step_call_q(power_stage_q *ps, const ps_battery_q *bat, const int32_t duty[3],
                          int32_t im_a, int32_t im_b);
-void ps_fast_step_call_f32(power_stage_f32 *ps, const ps_battery_f32 *bat, const int32_t s[3],
-                           float im_a, float im_b);
+void ps_fast_step_call_f32(power_stage_f32 *ps, const ps_battery_f32 *bat,
+                           const int32_t duty[3], float im_a, float im_b);
 
 #endif /* UUV_POWER_STAGE_FAST_H */

@@ -69,12 +69,12 @@ void power_stage_step_f32(power_stage_f32 *ps, const power_stage_in_f32 *in) {
     ps->i_dc = i_dc;
 }
 
-void ps_fast_step_call_q(power_stage_q *ps, const ps_battery_q *bat, const int32_t s[3],
+void ps_fast_step_call_q(power_stage_q *ps, const ps_battery_q *bat, const int32_t duty[3],
                          int32_t im_a, int32_t im_b) {
-    ps_fast_step_q(ps, bat, s, im_a, im_b);
+    ps_fast_step_q(ps, bat, duty, im_a, im_b);
 }
 
-void ps_fast_step_call_f32(power_stage_f32 *ps, const ps_battery_f32 *bat, const int32_t s[3],
-                           float im_a, float im_b) {
-    ps_fast_step_f32(ps, bat, s, im_a, im_b);
+void ps_fast_step_call_f32(power_stage_f32 *ps, const ps_battery_f32 *bat,
+                           const int32_t duty[3], float im_a, float im_b) {
+    ps_fast_step_f32(ps, bat, duty, im_a, im_b);
 }

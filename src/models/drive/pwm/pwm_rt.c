@@ -21,7 +21,25 @@ pwm_status pwm_rt_init(pwm_rt *p, const pwm_params *pp, uint32_t step_ns) {
     if (st != PWM_OK) {
         return st;
     }
-    *p = (pwm_rt){check.ph_c, check.inc_c, {0, 0}, {0, 0}};
+    /* The pre-shift that brings a step's carrier change, inc_c / 2^7 in
+     * Q23 (with up to 2 % of reference slope on it), below 2^16. */
+    uint32_t sh = 0u;
+    while (sh < 16u && ((check.inc_c >> 7) + (check.inc_c >> 12)) >> sh > 0xffffu) {
+        sh++;
+    }
+    *p = (pwm_rt){check.ph_c, check.inc_c, {0, 0}, {0, 0}, 0, sh};
+    return PWM_OK;
+}
+
+pwm_status pwm_rt_dead_time(pwm_rt *p, uint32_t dead_ns, uint32_t step_ns) {
+    if (p == NULL) {
+        return PWM_ERR_NULL;
+    }
+    if (step_ns == 0u || dead_ns > 10000u || dead_ns > 8u * step_ns) {
+        return PWM_ERR_STEP;
+    }
+    /* t_d / T in Q16, rounded: below 2^19. */
+    p->kd = (int32_t)((((uint64_t)dead_ns << 16) + step_ns / 2u) / step_ns);
     return PWM_OK;
 }
 

@@ -20,9 +20,35 @@
  *     half and 2^25 - x on the falling one, the carrier is y - 2^23 in Q23
  *     (-1 at phase 0, +1 at half a turn), linear between, as the table
  *     triangle of fixedpoint/wavetable.h is.
- *   - The comparison is made at t_k and held over [t_k, t_k+1] (sampled
- *     edges), in Q23: leg x is on when r_x > c, the sign bit of c - r_x.
- *     r_c = -r_a - r_b, so the three references sum to zero.
+ *   - Two ways to turn the comparison into the inverter's input, both in
+ *     Q23, leg x on while r_x > c (r_c = -r_a - r_b, so the three
+ *     references sum to zero):
+ *     sub-step (pwm_rt_substep, the default): the comparison e = r - c is
+ *       linear over the step (the carrier between its knots, the reference
+ *       on its ramp), so from its values e0 at t_k and e1 at t_k+1 the
+ *       leg's on-time is exact: the whole step or none of it without a
+ *       sign change, else the positive end's share e_pos / |e1 - e0| (the
+ *       crossing located inside the step). The duty (Q15, 32768 = the
+ *       step) is what the power stage applies, as the step's mean pole
+ *       voltage (power_stage_fast.h). A step that holds a carrier knot is
+ *       taken as straight between its ends: for m below 1 - 4 f_c T (0.96
+ *       at 5 kHz and 2 us) no leg switches in such a step, above it a
+ *       pulse narrower than the step may be lost.
+ *     sampled (pwm_rt_step): the comparison made at t_k and held over
+ *       [t_k, t_k+1], the sign bit of c - r_x: fixed-step switching, the
+ *       paper's baseline (pulse widths in whole steps).
+ *   - Dead time t_d (pwm_rt_dead_time; 0 by default, the paper's ideal
+ *     switches): at every edge both switches of a leg are off for t_d, and
+ *     the pole follows the diode the phase current takes: the lower one
+ *     (pole low) for i_L >= 0, out of the leg, the upper one for i_L < 0.
+ *     So with i_L >= 0 a rising edge comes t_d late, with i_L < 0 a
+ *     falling one. Delaying an edge of a linear comparison by t_d is
+ *     shifting it by t_d/T of its change per step: pwm_rt_substep_dt()
+ *     resolves it with the sub-step arithmetic above, on e0 - s and
+ *     e1 - s with s = (t_d / T)(e1 - e0) for the edges the current delays
+ *     and s = 0 for the others. Over a carrier period it takes
+ *     t_d f_c sign(i) of the duty away: the classic mean error
+ *     V_dc t_d f_c sign(i) per leg.
  *
  * Scaling: references Q23 (2^23 = 1, |r| <= 2^23 for m <= 1), the carrier
  * Q23 in [-2^23, 2^23]; |c - r_x| and |c + r_a + r_b| stay below 2^25.
@@ -30,8 +56,10 @@
 #ifndef UUV_PWM_RT_H
 #define UUV_PWM_RT_H
 
+#include <stdbool.h>
 #include <stdint.h>
 
+#include "fixedpoint/fixedpoint.h"
 #include "models/drive/pwm/pwm.h"
 
 #define PWM_RT_ONE 8388608 /* 2^23: 1 in the Q23 of the references and the carrier */
@@ -41,7 +69,11 @@ typedef struct {
     uint32_t inc_c;  /* carrier increment per step */
     int32_t r[2];    /* references of legs a and b at t_k, Q23 */
     int32_t dr[2];   /* their change per step, Q23 */
+    int32_t kd;      /* dead time over the step, t_d / T, Q16 (0: none) */
+    uint32_t den_sh; /* the duty division's pre-shift: a step's carrier change below 2^16 */
 } pwm_rt;
+
+#define PWM_RT_DUTY_ONE 32768 /* a whole step's duty (Q15, as pwm.h's PWM_DUTY_ONE_Q) */
 
 /* What the motor task hands the step for one frame: the references' start and slope. */
 typedef struct {
@@ -78,6 +110,120 @@ static inline void pwm_rt_step(pwm_rt *p, int32_t s[3]) {
     p->r[0] = ra + p->dr[0];
     p->r[1] = rb + p->dr[1];
 }
+
+/* The comparisons e = r - c of the three legs at t_k (e0) and t_k+1 (e1), Q23. */
+static inline void pwm_rt_ends(const pwm_rt *p, int32_t e0[3], int32_t e1[3]) {
+    const int32_t c0 = pwm_rt_carrier(p->ph_c);
+    const int32_t c1 = pwm_rt_carrier(p->ph_c + p->inc_c);
+    const int32_t ra = p->r[0];
+    const int32_t rb = p->r[1];
+    const int32_t ra1 = ra + p->dr[0];
+    const int32_t rb1 = rb + p->dr[1];
+    e0[0] = ra - c0;
+    e0[1] = rb - c0;
+    e0[2] = -ra - rb - c0;
+    e1[0] = ra1 - c1;
+    e1[1] = rb1 - c1;
+    e1[2] = -ra1 - rb1 - c1;
+}
+
+/* The carrier and the references advance to t_k+1. */
+static inline void pwm_rt_advance(pwm_rt *p) {
+    p->ph_c += p->inc_c;
+    p->r[0] += p->dr[0];
+    p->r[1] += p->dr[1];
+}
+
+/*
+ * The on-time of a leg over a step whose comparison goes linearly from e0
+ * to e1 (Q23, |e0|, |e1| < 2^30), Q15 of the step: PWM_RT_DUTY_ONE or 0
+ * without a sign change, else e_pos / (e_pos - e_neg). The division is of
+ * 15-bit-or-so operands: both ends shifted right by sh (set-up: a step's
+ * carrier change below 2^16) and, if the change is still above 2^16, by
+ * more; the quotient is at most 32768 (e_pos <= the change, and the
+ * divisor is rounded up by its lowest bit). Integer only; total.
+ */
+static inline int32_t pwm_rt_duty(int32_t e0, int32_t e1, uint32_t sh) {
+    uint32_t pos;
+    uint32_t den;
+    if (e0 > 0) {
+        if (e1 > 0) {
+            return PWM_RT_DUTY_ONE;
+        }
+        pos = (uint32_t)e0;
+        den = (uint32_t)e0 - (uint32_t)e1;
+    } else {
+        if (e1 <= 0) {
+            return 0;
+        }
+        pos = (uint32_t)e1;
+        den = (uint32_t)e1 - (uint32_t)e0;
+    }
+    pos >>= sh;
+    den >>= sh;
+    while (den > 0xffffu) {
+        pos >>= 1;
+        den >>= 1;
+    }
+    return (int32_t)((pos << 15) / (den | 1u));
+}
+
+/*
+ * One sampled step as duties: the held states of pwm_rt_step() in s and
+ * as duties of a whole step or none (Q15) in duty.
+ */
+static inline void pwm_rt_sampled(pwm_rt *p, int32_t s[3], int32_t duty[3]) {
+    pwm_rt_step(p, s);
+    duty[0] = s[0] * PWM_RT_DUTY_ONE;
+    duty[1] = s[1] * PWM_RT_DUTY_ONE;
+    duty[2] = s[2] * PWM_RT_DUTY_ONE;
+}
+
+/*
+ * One sub-step: the duties of the three legs over [t_k, t_k+1] (Q15) and
+ * their states at t_k+1 (0 or 1), then the carrier and references advance.
+ * No dead time (pwm_rt_substep_dt() takes it). Integer only; total.
+ */
+static inline void pwm_rt_substep(pwm_rt *p, int32_t s[3], int32_t duty[3]) {
+    int32_t e0[3];
+    int32_t e1[3];
+    pwm_rt_ends(p, e0, e1);
+    for (int x = 0; x < 3; x++) {
+        duty[x] = pwm_rt_duty(e0[x], e1[x], p->den_sh);
+        s[x] = (e1[x] > 0) ? 1 : 0;
+    }
+    pwm_rt_advance(p);
+}
+
+/*
+ * The same with the dead time p->kd and the phase currents that decide
+ * which edges it delays: neg[x] nonzero when leg x's current flows into
+ * the leg (i_L < 0). The comparison of a leg whose delayed edges go its
+ * way (rising with neg[x] == 0, falling with neg[x] != 0) is shifted by
+ * s = kd (e1 - e0) / 2^16 before its duty and state are formed.
+ */
+static inline void pwm_rt_substep_dt(pwm_rt *p, const int32_t neg[3], int32_t s[3],
+                                     int32_t duty[3]) {
+    int32_t e0[3];
+    int32_t e1[3];
+    pwm_rt_ends(p, e0, e1);
+    for (int x = 0; x < 3; x++) {
+        const int32_t de = e1[x] - e0[x];
+        const bool delayed = (neg[x] != 0) ? (de < 0) : (de > 0);
+        const int32_t sft =
+            delayed ? (int32_t)fp_shr_floor_i64((int64_t)de * p->kd, 16u) : 0;
+        duty[x] = pwm_rt_duty(e0[x] - sft, e1[x] - sft, p->den_sh);
+        s[x] = (e1[x] - sft > 0) ? 1 : 0;
+    }
+    pwm_rt_advance(p);
+}
+
+/*
+ * The dead time of the real-time modulator: t_d = dead_ns against the
+ * step step_ns, at most 10 us and at most 8 steps (PWM_ERR_STEP
+ * otherwise, the instance unchanged). Set-up code: divides.
+ */
+pwm_status pwm_rt_dead_time(pwm_rt *p, uint32_t dead_ns, uint32_t step_ns);
 
 /*
  * Set-up from the parameters of pwm.h (edges must be PWM_EDGES_SAMPLED;
