@@ -92,6 +92,24 @@ frames() {
 }
 check "frames: --motor-frame and --slow-frame set the steps and the records" frames
 
+# modulator: the summary names the switching inverter's modulator and dead time; the
+# sampled modulator and a 1 us dead time each change the run (the CSV differs).
+modulator() {
+    "$uuvsim" --json --duration 0.3 --scenario scenarios/bench_2s.scn --csv "$tmp/m0.csv" \
+        >"$tmp/m0.json" &&
+        grep -q '"modulator": "substep",' "$tmp/m0.json" &&
+        grep -q '"dead_time_s": 0,' "$tmp/m0.json" &&
+        "$uuvsim" --json --duration 0.3 --modulator sampled --scenario scenarios/bench_2s.scn \
+            --csv "$tmp/m1.csv" >"$tmp/m1.json" &&
+        grep -q '"modulator": "sampled",' "$tmp/m1.json" &&
+        "$uuvsim" --duration 0.3 --dead-time 1us --scenario scenarios/bench_2s.scn \
+            --csv "$tmp/m2.csv" >"$tmp/m2.txt" &&
+        grep -q 'inverter switching (modulator substep, dead time 1 us)' "$tmp/m2.txt" &&
+        ! cmp -s "$tmp/m0.csv" "$tmp/m1.csv" && ! cmp -s "$tmp/m0.csv" "$tmp/m2.csv"
+}
+check "modulator: --modulator and --dead-time are named in the summaries and change the run" \
+    modulator
+
 # heading: the summary's compass heading is psi wrapped into [0, 360), with psi beside it.
 heading() {
     printf 'duration 0.1\ninit psi_rad=-3.4\n' >"$tmp/h.scn" &&
@@ -374,6 +392,13 @@ printf 'duration 10\nat 1 rudder=46deg\n' >"$tmp/deg.scn"
 expect_error "error: an angle out of range in degrees is reported in degrees" \
     "deg.scn:2: field 'rudder': value 46 deg out of range \[-45, 45\]" \
     "$uuvsim" --scenario "$tmp/deg.scn"
+expect_error "error: bad --modulator value" "option --modulator: expected one of substep|sampled" \
+    "$uuvsim" --modulator held --scenario scenarios/bench_2s.scn
+expect_error "error: a dead time over 10 us" "option --dead-time: expected at most 10us, got 12us" \
+    "$uuvsim" --dead-time 12us --scenario scenarios/bench_2s.scn
+expect_error "error: a dead time with the sampled modulator" \
+    "option --dead-time: needs --inverter switching and --modulator substep" \
+    "$uuvsim" --dead-time 1us --modulator sampled --scenario scenarios/bench_2s.scn
 
 expect_error "error: a positional argument is reported as such, with --scenario suggested" \
     "unexpected argument 'scenarios/bench_2s.scn': .* --scenario scenarios/bench_2s.scn" \
