@@ -370,8 +370,8 @@ view: $(BUILD)/linux-float/uuvsim
 
 # The accuracy/speed-up study of both builds, in build/bench.json.
 bench: $(BUILD)/linux-fixed/bench $(BUILD)/linux-float/bench
-	@$(BUILD)/linux-fixed/bench scenarios/bench_2s.scn > $(BUILD)/bench-fixed.json
-	@$(BUILD)/linux-float/bench scenarios/bench_2s.scn > $(BUILD)/bench-float.json
+	@$(BUILD)/linux-fixed/bench scenarios/bench_2s.scn 2 scenarios/low_speed_2s.scn > $(BUILD)/bench-fixed.json
+	@$(BUILD)/linux-float/bench scenarios/bench_2s.scn 2 scenarios/low_speed_2s.scn > $(BUILD)/bench-float.json
 	@printf '{"fixed": %s, "float": %s}\n' "$$(cat $(BUILD)/bench-fixed.json)" \
 	    "$$(cat $(BUILD)/bench-float.json)" > $(BUILD)/bench.json
 	@echo "written $(BUILD)/bench.json"

@@ -1,8 +1,8 @@
 /*
  * drive_fast_run(): the desk's runs of fast steps (drive_segment.h), for
  * either numeric build. On the real-time path (switching inverter without
- * dead time, mean or sampled coupling: the drive's "plain" path) the step's
- * state is copied into locals, stepped n times and copied back, so that it
+ * dead time, held EMF, mean or sampled coupling: the drive's "plain" path)
+ * the step's state is copied into locals, stepped n times and copied back, so that it
  * stays in registers between the steps instead of going through the drive
  * in memory each step. Any other path takes n drive_fast_step()s.
  *
@@ -65,8 +65,7 @@ static inline void plain_run(drive_segment *d, uint32_t n, const bool substep) {
     int32_t s[3] = {d->s[0], d->s[1], d->s[2]};
     plain_stage ps = d->ps;
     plain_val i_fast[2] = {d->i_fast[0], d->i_fast[1]};
-    plain_val e[2] = {d->e[0], d->e[1]};
-    const plain_val e_step[2] = {d->e_step[0], d->e_step[1]};
+    const plain_val e[2] = {d->e[0], d->e[1]};
     const plain_val gain = plain_gain(d);
     plain_sum v_cap[2] = {d->sums.v_cap[0], d->sums.v_cap[1]};
     plain_sum v_dc = d->sums.v_dc;
@@ -85,7 +84,6 @@ static inline void plain_run(drive_segment *d, uint32_t n, const bool substep) {
         for (int x = 0; x < 2; x++) {
             plain_phase(&ps, &f, x, i_fast[x]);
             const plain_val v = ps.ph[x].v_c;
-            e[x] += e_step[x];
             i_fast[x] = plain_companion(i_fast[x], v, e[x], gain);
             v_cap[x] += v;
         }
@@ -99,7 +97,6 @@ static inline void plain_run(drive_segment *d, uint32_t n, const bool substep) {
     d->ps = ps;
     for (int x = 0; x < 2; x++) {
         d->i_fast[x] = i_fast[x];
-        d->e[x] = e[x];
         d->sums.v_cap[x] = v_cap[x];
     }
     d->sums.v_dc = v_dc;

@@ -267,6 +267,8 @@ struct drive_segment {
     induction_motor_out_q mout;
     q31_t i_prev[2];            /* motor currents at the frame start */
     int32_t e_prev[2];          /* EMF of the previous frame (FOH) */
+    int32_t corr_prev[2];       /* the last drift correction, steered out through the EMF */
+    uint32_t corr_pending;      /* steps of it still to come at a frame's mark */
     uint32_t ref_ph;            /* reference phase at the start of the next frame to ramp */
     drive_control_out_q cmd;    /* the controller command in force */
     /* Slow-medium segment: the controller, its own task. */
@@ -369,6 +371,8 @@ struct drive_segment {
     induction_motor_out_f32 mout;
     float i_prev[2];
     float e_prev[2];
+    float corr_prev[2];         /* [A] */
+    float corr_pending;         /* [-] the share of it still to come at a frame's mark */
     uint32_t ref_ph;
     drive_control_out_f32 cmd;
     drive_control_params ctl_params;
@@ -414,9 +418,8 @@ void drive_fast_run(drive_segment *d, uint32_t n);
 /*
  * Hands the real-time step to a port's kernel, or back to the C when
  * kernel is NULL: the drive's "plain" path (switching inverter, no dead
- * time, the mean or sampled coupling, no faults) with the sampled
- * modulator and the held EMF (zoh, stagger), the step such a kernel
- * computes. The kernel must compute what drive_fast_tick() computes there,
+ * time, held EMF, the mean or sampled coupling, no faults) with the
+ * sampled modulator, the step such a kernel computes. The kernel must compute what drive_fast_tick() computes there,
  * bit for bit (ports/cortexm's for ARMv7-M is tested against it); every
  * other path, the sub-step modulator's included, stays the C's. Call it
  * after drive_init().

@@ -104,11 +104,15 @@ drive_status drive_init(drive_segment *d, const drive_config *cfg, const propell
     d->k_deriv = fp_from_f64_q31(6.283185307179586 * DRIVE_BASE_FREQ_HZ * fast_s /
                                  1.7320508075688772);
     d->plain_ok = (d->k32 != 0) && (cfg->inverter == DRIVE_INVERTER_SWITCHING) &&
-               (cfg->dead_time_ns == 0u) && (cfg->up != COUPLE_FILTER) && !cfg->energy_audit;
-    d->kernel_ok = (cfg->modulator == DRIVE_MODULATOR_SAMPLED) &&
-                   (cfg->down == COUPLE_ZOH || cfg->down == COUPLE_STAGGER);
+               (cfg->dead_time_ns == 0u) &&
+               (cfg->down == COUPLE_ZOH || cfg->down == COUPLE_STAGGER) &&
+               (cfg->up != COUPLE_FILTER) && !cfg->energy_audit;
+    d->kernel_ok = (cfg->modulator == DRIVE_MODULATOR_SAMPLED);
     d->plain = d->plain_ok;
     d->staggered = drive_staggered(cfg->down, cfg->fast_per_medium);
+    /* Steps of a correction still to come at the next mark: from the latch on it
+     * runs a frame, and the latch is at the boundary or, staggered, N / 2 steps later. */
+    d->corr_pending = d->staggered ? cfg->fast_per_medium / 2u : cfg->fast_per_medium;
     if (induction_motor_load_q(&d->motor, 1.0, &d->load_next) != INDUCTION_MOTOR_OK) {
         return DRIVE_ERR_MODEL;
     }
@@ -183,31 +187,34 @@ static void audit_fast(drive_segment *d) {
 
 /*
  * Filter phase x of the real-time step, then at once the motor's fast
- * companion of that phase (its EMF moved first: e_step is zero unless the
- * coupling extrapolates) and its frame sum, so that little of the phase
+ * companion of that phase and its frame sum, so that little of the phase
  * stays alive in registers for the next.
  */
 static inline void fast_phase_plain(drive_segment *d, ps_fast_q *f, int x) {
     power_stage_q *ps = &d->ps;
     ps_fast_phase_q(ps, f, x, d->i_fast[x]);
     const int32_t v = ps->ph[x].v_c;
-    const int32_t e = d->e[x] + d->e_step[x];
-    d->e[x] = e;
     /* i + round((v - e) k32 / 2^32): one multiply-accumulate per phase. */
-    d->i_fast[x] = ps_hi_q(ps_mac_q(ps_acc_q(d->i_fast[x]), v - e, d->k32));
+    d->i_fast[x] = ps_hi_q(ps_mac_q(ps_acc_q(d->i_fast[x]), v - d->e[x], d->k32));
     d->sums.v_cap[x] += v;
 }
 
-/*
- * The real-time modulator's duties for the step (pwm_rt.h): sub-step, with
- * the dead time when there is one (the leg currents at t_k decide which
- * edges it delays), or sampled.
- */
-static inline void rt_duties(drive_segment *d, int32_t duty[3]) {
+/* The real-time modulator's duties for the step (pwm_rt.h): sub-step or sampled. */
+static inline void rt_duties_plain(drive_segment *d, int32_t duty[3]) {
     if (d->cfg.modulator == DRIVE_MODULATOR_SAMPLED) {
         pwm_rt_sampled(&d->rt, d->s, duty);
-    } else if (d->rt.kd == 0) {
+    } else {
         pwm_rt_substep(&d->rt, d->s, duty);
+    }
+}
+
+/*
+ * The same with the dead time, when there is one (the general path's): the
+ * leg currents at t_k decide which edges it delays.
+ */
+static void rt_duties(drive_segment *d, int32_t duty[3]) {
+    if (d->rt.kd == 0) {
+        rt_duties_plain(d, duty);
     } else {
         const int32_t ia = d->ps.ph[0].i_l;
         const int32_t ib = d->ps.ph[1].i_l;
@@ -225,7 +232,7 @@ static inline void fast_tick_plain(drive_segment *d) {
     power_stage_q *ps = &d->ps;
     ps_fast_q f;
     int32_t duty[3];
-    rt_duties(d, duty);
+    rt_duties_plain(d, duty);
     ps_fast_begin_q(ps, duty, &f);
     fast_phase_plain(d, &f, 0);
     fast_phase_plain(d, &f, 1);
@@ -374,9 +381,9 @@ static inline void latch_apply(drive_segment *d) {
     d->i_fast[1] += o->corr[1];
     d->e[0] = o->e[0];
     d->e[1] = o->e[1];
-    d->e_step[0] = o->de[0];
-    d->e_step[1] = o->de[1];
     if (!d->plain) {
+        d->e_step[0] = o->de[0];
+        d->e_step[1] = o->de[1];
         if (d->out.cmd_new) {
             pwm_command_inc_q(d->mod, o->cmd.m, o->cmd.phase_inc);
             d->out.cmd_new = false;
@@ -472,7 +479,8 @@ void drive_medium_begin(drive_segment *d, bool slow_boundary) {
  * modes start 1.5 frames after the centre of the frame it was computed
  * from, half a step early.
  */
-static void emf_update(drive_segment *d, const q31_t v_mean[2], const q31_t i_end[2]) {
+static void emf_update(drive_segment *d, const q31_t v_mean[2], const q31_t i_end[2],
+                       const int32_t corr[2]) {
     int32_t e[2];
     for (int x = 0; x < 2; x++) {
         int64_t di = (int64_t)i_end[x] - d->i_prev[x];
@@ -492,7 +500,9 @@ static void emf_update(drive_segment *d, const q31_t v_mean[2], const q31_t i_en
     }
     int64_t ahead = 3 * (int64_t)d->cfg.fast_per_medium / 2 - 1;
     for (int x = 0; x < 2; x++) {
-        d->out.e[x] = (int32_t)fp_sat_q31((int64_t)e[x] + (int64_t)de[x] * ahead);
+        /* The drift correction, spread over the frame: corr / (k_l N) volts less. */
+        int64_t steer = fp_shr_round_i64((int64_t)corr[x] * 8 * d->e_mant, d->e_shift);
+        d->out.e[x] = (int32_t)fp_sat_q31((int64_t)e[x] + (int64_t)de[x] * ahead - steer);
         d->out.de[x] = de[x];
         d->e_prev[x] = e[x];
     }
@@ -565,12 +575,23 @@ void drive_medium_task(drive_segment *d, bool control_due, bool slow_boundary) {
     }
     q31_t i_end[2] = {d->mout.i_a, d->mout.i_b};
     q31_t v_mean[2] = {min.v_a, min.v_b};
+    /* Motor minus fast current at the frame end (Q31 to the companion's Q3.28:
+     * three bits down): the fast companion steers it out over the next frame
+     * through its EMF, the averaged layer (no companion) takes it at once. */
+    int32_t corr[2];
+    for (int x = 0; x < 2; x++) {
+        corr[x] = fp_shr_round_i32(i_end[x], 3u) - s->i_mark[x];
+        if (d->stage != NULL) {
+            /* Less what the last correction has still to bring after the mark. */
+            corr[x] -= (int32_t)((int64_t)d->corr_prev[x] * d->corr_pending / (int64_t)n);
+            d->corr_prev[x] = corr[x];
+        }
+    }
     if (d->stage != NULL) {
-        emf_update(d, v_mean, i_end); /* the averaged layer has no fast companion */
+        emf_update(d, v_mean, i_end, corr);
     }
     for (int x = 0; x < 2; x++) {
-        /* Q31 to the companion's Q3.28: three bits down. */
-        d->out.corr[x] = fp_shr_round_i32(i_end[x], 3u) - s->i_mark[x];
+        d->out.corr[x] = (d->stage != NULL) ? 0 : corr[x];
         d->i_prev[x] = i_end[x];
     }
     slow_sums_add(d, s, i_end);

@@ -73,11 +73,14 @@ drive_status drive_init(drive_segment *d, const drive_config *cfg, const propell
     d->filt_k = 1.0f / (float)cfg->fast_per_medium;
     d->k_deriv = (float)(6.283185307179586 * fast_s / 1.7320508075688772);
     d->plain_ok = (cfg->inverter == DRIVE_INVERTER_SWITCHING) && (cfg->dead_time_ns == 0u) &&
+               (cfg->down == COUPLE_ZOH || cfg->down == COUPLE_STAGGER) &&
                (cfg->up != COUPLE_FILTER) && !cfg->energy_audit;
-    d->kernel_ok = (cfg->modulator == DRIVE_MODULATOR_SAMPLED) &&
-                   (cfg->down == COUPLE_ZOH || cfg->down == COUPLE_STAGGER);
+    d->kernel_ok = (cfg->modulator == DRIVE_MODULATOR_SAMPLED);
     d->plain = d->plain_ok;
     d->staggered = drive_staggered(cfg->down, cfg->fast_per_medium);
+    d->corr_pending = d->staggered ? (float)(cfg->fast_per_medium / 2u) /
+                                         (float)cfg->fast_per_medium
+                                   : 1.0f;
     if (induction_motor_load_f32(&d->motor, 1.0, &d->load_next) != INDUCTION_MOTOR_OK) {
         return DRIVE_ERR_MODEL;
     }
@@ -96,18 +99,23 @@ static inline void fast_phase_plain(drive_segment *d, ps_fast_f32 *f, int x) {
     power_stage_f32 *ps = &d->ps;
     ps_fast_phase_f32(ps, f, x, d->i_fast[x]);
     const float v = ps->ph[x].v_c;
-    const float e = d->e[x] + d->e_step[x];
-    d->e[x] = e;
-    d->i_fast[x] += (v - e) * d->k_l;
+    d->i_fast[x] += (v - d->e[x]) * d->k_l;
     d->sums.v_cap[x] += v;
 }
 
 /* The real-time modulator's duties (as in drive_segment_fixed.c). */
-static inline void rt_duties(drive_segment *d, int32_t duty[3]) {
+static inline void rt_duties_plain(drive_segment *d, int32_t duty[3]) {
     if (d->cfg.modulator == DRIVE_MODULATOR_SAMPLED) {
         pwm_rt_sampled(&d->rt, d->s, duty);
-    } else if (d->rt.kd == 0) {
+    } else {
         pwm_rt_substep(&d->rt, d->s, duty);
+    }
+}
+
+/* The same with the dead time, when there is one (the general path's). */
+static void rt_duties(drive_segment *d, int32_t duty[3]) {
+    if (d->rt.kd == 0) {
+        rt_duties_plain(d, duty);
     } else {
         const float ia = d->ps.ph[0].i_l;
         const float ib = d->ps.ph[1].i_l;
@@ -121,7 +129,7 @@ static inline void fast_tick_plain(drive_segment *d) {
     power_stage_f32 *ps = &d->ps;
     ps_fast_f32 f;
     int32_t duty[3];
-    rt_duties(d, duty);
+    rt_duties_plain(d, duty);
     ps_fast_begin_f32(ps, duty, &f);
     fast_phase_plain(d, &f, 0);
     fast_phase_plain(d, &f, 1);
@@ -277,9 +285,9 @@ static inline void latch_apply(drive_segment *d) {
     d->i_fast[1] += o->corr[1];
     d->e[0] = o->e[0];
     d->e[1] = o->e[1];
-    d->e_step[0] = o->de[0];
-    d->e_step[1] = o->de[1];
     if (!d->plain) {
+        d->e_step[0] = o->de[0];
+        d->e_step[1] = o->de[1];
         if (d->out.cmd_new) {
             pwm_command_inc_f32(d->mod, o->cmd.m, o->cmd.phase_inc);
             d->out.cmd_new = false;
@@ -360,7 +368,8 @@ void drive_medium_begin(drive_segment *d, bool slow_boundary) {
 }
 
 /* As in drive_segment_fixed.c: the frame's EMF and its change per fast step [V]. */
-static void emf_update(drive_segment *d, const float v_mean[2], const float i_end[2]) {
+static void emf_update(drive_segment *d, const float v_mean[2], const float i_end[2],
+                       const float corr[2]) {
     float e[2];
     for (int x = 0; x < 2; x++) {
         e[x] = v_mean[x] - (i_end[x] - d->i_prev[x]) * d->e_per_di;
@@ -377,7 +386,8 @@ static void emf_update(drive_segment *d, const float v_mean[2], const float i_en
     }
     float ahead = 1.5f * (float)d->cfg.fast_per_medium - 1.0f;
     for (int x = 0; x < 2; x++) {
-        d->out.e[x] = e[x] + de[x] * ahead;
+        /* The drift correction, spread over the frame (drive_segment_fixed.c). */
+        d->out.e[x] = (e[x] + de[x] * ahead) - corr[x] * d->e_per_di;
         d->out.de[x] = de[x];
         d->e_prev[x] = e[x];
     }
@@ -439,11 +449,21 @@ void drive_medium_task(drive_segment *d, bool control_due, bool slow_boundary) {
     }
     float i_end[2] = {d->mout.i_a, d->mout.i_b};
     float v_mean[2] = {min.v_a, min.v_b};
+    /* Motor minus fast current at the frame end (as in drive_segment_fixed.c). */
+    float corr[2];
+    for (int x = 0; x < 2; x++) {
+        corr[x] = i_end[x] - s->i_mark[x];
+        if (d->stage != NULL) {
+            /* Less what the last correction has still to bring (drive_segment_fixed.c). */
+            corr[x] -= d->corr_prev[x] * d->corr_pending;
+            d->corr_prev[x] = corr[x];
+        }
+    }
     if (d->stage != NULL) {
-        emf_update(d, v_mean, i_end); /* the averaged layer has no fast companion */
+        emf_update(d, v_mean, i_end, corr);
     }
     for (int x = 0; x < 2; x++) {
-        d->out.corr[x] = i_end[x] - s->i_mark[x];
+        d->out.corr[x] = (d->stage != NULL) ? 0.0f : corr[x];
         d->i_prev[x] = i_end[x];
     }
     slow_sums_add(d, s, i_end);

@@ -27,7 +27,7 @@ void exec_config_default(exec_config *cfg) {
     cfg->inverter = DRIVE_INVERTER_SWITCHING;
     cfg->modulator = DRIVE_MODULATOR_SUBSTEP;
     cfg->dead_time_ns = 0u;
-    cfg->down = COUPLE_FOH;
+    cfg->down = COUPLE_ZOH;
     cfg->up = COUPLE_AVG;
     cfg->soc0 = 1.0;
     cfg->fast_ns = 2000u;

@@ -208,7 +208,7 @@ extern const char *const exec_command_names[EXEC_NCMD];
 
 /*
  * Default: full plant, paper propulsion, switching inverter with the
- * sub-step modulator and no dead time, FOH/average, 2 us/100 us/800 us/100 ms.
+ * sub-step modulator and no dead time, ZOH/average, 2 us/100 us/800 us/100 ms.
  */
 void exec_config_default(exec_config *cfg);
 

@@ -2,7 +2,7 @@
  * bench: the accuracy/speed-up study of the multi-rate executive, for one
  * numeric build, in one run on one scenario.
  *
- *   bench SCENARIO.scn [DURATION_S]
+ *   bench SCENARIO.scn [DURATION_S [LOW_SPEED.scn]]
  *
  * Runs the scenario single-rate (every integrating segment at 2 us, the
  * reference), then multi-rate with every coupling, and the averaged
@@ -22,6 +22,12 @@
  * by about 7 % in shaft speed over this start-up (docs/multirate.md). Its
  * real-time factor is the best of five runs (one run takes well under a
  * millisecond).
+ *
+ * With a third argument, the switching-error study follows (study()): the
+ * sampled and sub-step modulators against the single-rate switching-event
+ * reference at fast steps of 1, 2, 4 and 5 us on SCENARIO and on the
+ * low-speed scenario, the fundamental of v_an, and the motor coupling's
+ * frame-rate artefact against the single-rate run.
  */
 #include <math.h>
 #include <stdio.h>
@@ -30,9 +36,12 @@
 #include <time.h>
 
 #include "executive.h"
+#include "fixedpoint/wavetable.h"
+#include "models/drive/pwm/pwm_rt.h"
 #include "uuv_config.h"
 
 #define MAX_RECORDS 4096
+#define BENCH_PI 3.14159265358979323846
 
 typedef struct {
     exec_frame rec[MAX_RECORDS];
@@ -208,9 +217,276 @@ static int load(const char *path) {
     return 0;
 }
 
+/* ---- The switching-error study (docs/multirate.md, "Switching error") ---- */
+
+/*
+ * The fast-step window of a run: the phase-a capacitor voltage and the
+ * motor-side current the filter sees (the fast companion's, the trace's
+ * i_motor) after each of n fast steps from step k0 on (k0 a whole number of
+ * motor frames).
+ */
+static int run_window(const exec_config *cfg, uint64_t k0, uint32_t n, double *vc, double *ia) {
+    if (exec_init(&ex, cfg, &scn) != EXEC_OK) {
+        fprintf(stderr, "bench: the executive refused the configuration\n");
+        return -1;
+    }
+    uint32_t i = 0u;
+    uint64_t last = UINT64_MAX;
+    while (ex.state == EXEC_RUNNING && i < n) {
+        uint64_t k = exec_fast_steps(&ex);
+        uint64_t ahead = (k < k0) ? k0 - k : 1u;
+        (void)exec_desk_run(&ex, (ahead < UINT32_MAX) ? (uint32_t)ahead : UINT32_MAX);
+        k = exec_fast_steps(&ex);
+        if (k > k0 && k != last) {
+            last = k;
+            drive_trace_row row;
+            drive_trace(&ex.drive, &row);
+            vc[i] = row.v_cap[0];
+            ia[i] = row.i_motor[0];
+            i++;
+        }
+        if (ex.report_ready) {
+            exec_frame f;
+            (void)exec_report_take(&ex, &f);
+        }
+    }
+    return (i == n) ? 0 : -1;
+}
+
+/* RMS [units of x] of x's content from f_lo to f_hi (single-bin DFTs over the window). */
+static double band_rms(const double *x, uint32_t n, double dt, double f_lo, double f_hi) {
+    const double df = 1.0 / ((double)n * dt);
+    double sum = 0.0;
+    for (long b = (long)ceil(f_lo / df); (double)b * df <= f_hi; b++) {
+        const double w = -2.0 * BENCH_PI * (double)b * df * dt;
+        const double cr = cos(w);
+        const double ci = sin(w);
+        double zr = 1.0, zi = 0.0, re = 0.0, im = 0.0;
+        for (uint32_t k = 0u; k < n; k++) {
+            re += x[k] * zr;
+            im += x[k] * zi;
+            const double t = zr * cr - zi * ci;
+            zi = zr * ci + zi * cr;
+            zr = t;
+        }
+        const double amp = 2.0 * sqrt(re * re + im * im) / (double)n;
+        sum += 0.5 * amp * amp;
+    }
+    return sqrt(sum);
+}
+
+/* The motor-frame jump: mean |di| at each frame's first step and at the others. */
+static void frame_jump(const double *ia, uint32_t n, uint32_t frame, double *jump, double *step) {
+    double sj = 0.0, ss = 0.0;
+    uint32_t nj = 0u, ns = 0u;
+    for (uint32_t k = 1u; k < n; k++) {
+        const double d = fabs(ia[k] - ia[k - 1u]);
+        if (k % frame == 0u) {
+            sj += d;
+            nj++;
+        } else {
+            ss += d;
+            ns++;
+        }
+    }
+    *jump = (nj > 0u) ? sj / nj : 0.0;
+    *step = (ns > 0u) ? ss / ns : 0.0;
+}
+
+/*
+ * v_an = Vdc (d_a - 1/2) of the real-time modulator over one 50 Hz period
+ * at the fast step step_ns (the motor task's ramps over 100 us frames, of
+ * this build): its fundamental against m Vdc / 2, in per cent.
+ */
+static double van_error_pct(uint32_t step_ns, bool substep, double m) {
+    static const pwm_params sampled = {5000.0, PWM_EDGES_SAMPLED, 0u, 0u};
+    const uint32_t inc = wt_phase_inc_q16(50 * 65536, step_ns);
+    const uint32_t frame = 100000u / step_ns;
+    const uint32_t steps = 20000000u / step_ns;
+    pwm_rt rt;
+    if (pwm_rt_init(&rt, &sampled, step_ns) != PWM_OK) {
+        return NAN;
+    }
+    uint32_t ph = 0u;
+    double re = 0.0, im = 0.0;
+    for (uint32_t k = 0u; k < steps; k++) {
+        if (k % frame == 0u) {
+            pwm_rt_ramp ramp;
+#if UUV_NUMERIC == UUV_NUMERIC_FIXED
+            pwm_rt_ramp_q(&ramp, (int32_t)(m * 32768.0 + 0.5), ph, inc, frame);
+#else
+            pwm_rt_ramp_f32(&ramp, (float)m, ph, inc, frame);
+#endif
+            pwm_rt_apply(&rt, &ramp);
+            ph += frame * inc;
+        }
+        int32_t s[3], duty[3];
+        if (substep) {
+            pwm_rt_substep(&rt, s, duty);
+        } else {
+            pwm_rt_sampled(&rt, s, duty);
+        }
+        /* The step's mean against the fundamental at the step's middle. */
+        const double th = 2.0 * BENCH_PI * ((double)k + 0.5) / (double)steps;
+        const double v = (double)duty[0] / 32768.0 - 0.5;
+        re += v * sin(th);
+        im += v * cos(th);
+    }
+    const double amp = 2.0 * sqrt(re * re + im * im) / (double)steps;
+    return 100.0 * (amp / (m / 2.0) - 1.0);
+}
+
+static const uint32_t study_steps_ns[] = {1000u, 2000u, 4000u, 5000u};
+
+/* The study's errors against the event reference ref, for one scenario (already loaded). */
+static int switching_study(const exec_config *base, const run_data *ref, const char *what,
+                           bool *first) {
+    static run_data sw;
+    for (size_t h = 0; h < sizeof study_steps_ns / sizeof study_steps_ns[0]; h++) {
+        for (int sub = 1; sub >= 0; sub--) {
+            exec_config c = *base;
+            c.fast_ns = study_steps_ns[h];
+            c.fast_per_medium = base->fast_ns * base->fast_per_medium / c.fast_ns;
+            c.modulator = sub ? DRIVE_MODULATOR_SUBSTEP : DRIVE_MODULATOR_SAMPLED;
+            if (run(&c, &sw) != 0) {
+                return -1;
+            }
+            errors e = compare(&sw, ref);
+            double worst = 0.0;
+            size_t n = (sw.n < ref->n) ? sw.n : ref->n;
+            for (size_t i = 0; i < n; i++) {
+                worst = fmax(worst, fabs(sw.rec[i].x[VESSEL_N_RPM] - ref->rec[i].x[VESSEL_N_RPM]));
+            }
+            fprintf(stderr, "    %-9s %u us %-8s %8.3f %8.3f %8.3f %8.3f %8.1f%s\n", what,
+                    (unsigned)(c.fast_ns / 1000u), sub ? "substep" : "sampled", e.shaft,
+                    e.current, e.surge, e.position, worst,
+                    sw.state == EXEC_DONE ? "" : "  (stopped)");
+            printf("%s{\"scenario\": \"%s\", \"fast_step_us\": %u, \"modulator\": \"%s\", "
+                   "\"err_shaft_speed_pct\": %.6g, \"err_current_pct\": %.6g, "
+                   "\"err_surge_speed_pct\": %.6g, \"err_position_pct\": %.6g, "
+                   "\"worst_shaft_rpm\": %.6g}",
+                   *first ? "" : ", ", what, (unsigned)(c.fast_ns / 1000u),
+                   sub ? "substep" : "sampled", e.shaft, e.current, e.surge, e.position, worst);
+            *first = false;
+        }
+    }
+    return 0;
+}
+
+/*
+ * The whole study (after the main tables): the errors of both modulators
+ * at four fast steps on the bench scenario and the low-speed one, the
+ * fundamental of v_an, and the motor coupling's frame-rate artefact at a
+ * steady 1000 rpm against the single-rate run (the motor at 2 us: the
+ * physical motor at the filter's terminals).
+ */
+static int study(const exec_config *cfg, const run_data *ref_ev, const char *low_path) {
+    fprintf(stderr, "  switching error against the single-rate switching-event reference "
+                    "(2 us), carrier 5 kHz, motor frame 100 us:\n");
+    fprintf(stderr, "    %-9s %4s %-8s %8s %8s %8s %8s %8s\n", "scenario", "step", "model",
+            "shaft", "current", "surge", "position", "worst rpm");
+    printf(", \"switching_study\": [");
+    bool first = true;
+    if (switching_study(cfg, ref_ev, "bench", &first) != 0) {
+        return -1;
+    }
+    if (load(low_path) != 0) {
+        return -1;
+    }
+    static run_data ref_low;
+    exec_config c = *cfg;
+    c.single_rate = true;
+    c.inverter = DRIVE_INVERTER_EVENT;
+    if (run(&c, &ref_low) != 0 || switching_study(cfg, &ref_low, "low-speed", &first) != 0) {
+        return -1;
+    }
+    printf("], \"van_fundamental\": [");
+    fprintf(stderr, "  v_an fundamental against m Vdc/2 (%%), 50 Hz, sampled / substep:\n");
+    fprintf(stderr, "    %-6s", "step");
+    static const double m_list[] = {0.1, 0.2, 0.5, 0.9};
+    for (size_t j = 0; j < 4u; j++) {
+        fprintf(stderr, "      m = %.1f    ", m_list[j]);
+    }
+    fprintf(stderr, "\n");
+    first = true;
+    for (size_t h = 0; h < sizeof study_steps_ns / sizeof study_steps_ns[0]; h++) {
+        fprintf(stderr, "    %u us  ", (unsigned)(study_steps_ns[h] / 1000u));
+        for (size_t j = 0; j < 4u; j++) {
+            const double es = van_error_pct(study_steps_ns[h], false, m_list[j]);
+            const double eu = van_error_pct(study_steps_ns[h], true, m_list[j]);
+            fprintf(stderr, " %7.3f / %7.4f", es, eu);
+            printf("%s{\"fast_step_us\": %u, \"m\": %.2g, \"sampled_pct\": %.6g, "
+                   "\"substep_pct\": %.6g}",
+                   first ? "" : ", ", (unsigned)(study_steps_ns[h] / 1000u), m_list[j], es, eu);
+            first = false;
+        }
+        fprintf(stderr, "\n");
+    }
+    /* The frame-rate artefact: 2 s to 3 s of the bench scenario (1000 rpm held). */
+    printf("], \"motor_coupling\": [");
+    fprintf(stderr, "  motor coupling at 1000 rpm (2 s to 3 s of the bench scenario; band "
+                    "7-13 kHz over 2.0 to 2.1 s, A and V rms):\n");
+    fprintf(stderr, "    %-18s %9s %9s %7s %9s %9s %9s %9s\n", "run", "jump [A]", "step [A]",
+            "ratio", "i_a band", "vc_a band", "di band", "dvc band");
+    static const char *const bench_path = "scenarios/bench_2s.scn";
+    if (load(bench_path) != 0) {
+        return -1;
+    }
+    const uint32_t n = 500000u;
+    const uint32_t nb = 50000u;
+    static double vc_ref[500000], ia_ref[500000], vc[500000], ia[500000], dv[50000], di[50000];
+    c = *cfg;
+    c.duration_s = 3.0;
+    c.single_rate = true;
+    const uint64_t k0 = (uint64_t)(2.0e9 / (double)cfg->fast_ns + 0.5);
+    if (run_window(&c, k0, n, vc_ref, ia_ref) != 0) {
+        return -1;
+    }
+    static const coupling_down downs[] = {COUPLE_ZOH, COUPLE_FOH, COUPLE_DERIV, COUPLE_STAGGER};
+    first = true;
+    for (int r = -1; r < 4; r++) {
+        const double *v = vc_ref;
+        const double *i = ia_ref;
+        char name[32];
+        if (r < 0) {
+            snprintf(name, sizeof name, "single-rate");
+        } else {
+            c = *cfg;
+            c.duration_s = 3.0;
+            c.down = downs[r];
+            if (run_window(&c, k0, n, vc, ia) != 0) {
+                return -1;
+            }
+            v = vc;
+            i = ia;
+            snprintf(name, sizeof name, "%s%s", down_names[downs[r]],
+                     downs[r] == cfg->down ? " (default)" : "");
+        }
+        double jump, step;
+        frame_jump(i, n, cfg->fast_per_medium, &jump, &step);
+        for (uint32_t k = 0u; k < nb; k++) {
+            dv[k] = v[k] - vc_ref[k];
+            di[k] = i[k] - ia_ref[k];
+        }
+        const double dt = 1e-9 * (double)cfg->fast_ns;
+        const double bi = band_rms(i, nb, dt, 7000.0, 13000.0);
+        const double bv = band_rms(v, nb, dt, 7000.0, 13000.0);
+        const double bdi = (r < 0) ? 0.0 : band_rms(di, nb, dt, 7000.0, 13000.0);
+        const double bdv = (r < 0) ? 0.0 : band_rms(dv, nb, dt, 7000.0, 13000.0);
+        fprintf(stderr, "    %-18s %9.4f %9.4f %7.2f %9.4f %9.4f %9.4f %9.4f\n", name, jump,
+                step, jump / step, bi, bv, bdi, bdv);
+        printf("%s{\"run\": \"%s\", \"jump_a\": %.6g, \"step_a\": %.6g, \"band_i_a\": %.6g, "
+               "\"band_vc_v\": %.6g, \"band_di_a\": %.6g, \"band_dvc_v\": %.6g}",
+               first ? "" : ", ", name, jump, step, bi, bv, bdi, bdv);
+        first = false;
+    }
+    printf("]");
+    return 0;
+}
+
 int main(int argc, char **argv) {
-    if (argc < 2 || argc > 3) {
-        fprintf(stderr, "usage: bench SCENARIO.scn [DURATION_S]\n");
+    if (argc < 2 || argc > 4) {
+        fprintf(stderr, "usage: bench SCENARIO.scn [DURATION_S [LOW_SPEED.scn]]\n");
         return 2;
     }
     if (load(argv[1]) != 0) {
@@ -344,8 +620,12 @@ int main(int argc, char **argv) {
            "\"err_position_pct\": %.6g}, "
            "\"reference_vs_event_reference\": {\"err_shaft_speed_pct\": %.6g, "
            "\"err_current_pct\": %.6g, \"err_surge_speed_pct\": %.6g, "
-           "\"err_position_pct\": %.6g}}\n",
+           "\"err_position_pct\": %.6g}",
            ae.shaft, ae.current, ae.surge, ae.position, ee.shaft, ee.current, ee.surge,
            ee.position, rr.shaft, rr.current, rr.surge, rr.position);
+    if (argc == 4 && study(&cfg, &ref_ev, argv[3]) != 0) {
+        return 1;
+    }
+    printf("}\n");
     return 0;
 }

@@ -45,7 +45,7 @@ const char cli_usage[] =
     "                           the energy balance (slower: the general fast path)\n"
     "  --slow-to-fast zoh|foh|deriv|stagger\n"
     "                           how the motor's EMF reaches the 2 us steps\n"
-    "                           (default foh)\n"
+    "                           (default zoh)\n"
     "  --fast-to-slow avg|filter|sample\n"
     "                           how fast signals are reduced for slower segments\n"
     "  --motor-frame T          the motor task's frame (default 100us), a whole\n"

@@ -31,6 +31,25 @@ pwm_status pwm_rt_init(pwm_rt *p, const pwm_params *pp, uint32_t step_ns) {
     return PWM_OK;
 }
 
+int32_t pwm_rt_edge_duty(int32_t e0, int32_t e1, uint32_t sh) {
+    uint32_t pos;
+    uint32_t den;
+    if (e0 > 0) {
+        pos = (uint32_t)e0;
+        den = (uint32_t)e0 - (uint32_t)e1;
+    } else {
+        pos = (uint32_t)e1;
+        den = (uint32_t)e1 - (uint32_t)e0;
+    }
+    pos >>= sh;
+    den >>= sh;
+    while (den > 0xffffu) {
+        pos >>= 1;
+        den >>= 1;
+    }
+    return (int32_t)((pos << 15) / (den | 1u));
+}
+
 pwm_status pwm_rt_dead_time(pwm_rt *p, uint32_t dead_ns, uint32_t step_ns) {
     if (p == NULL) {
         return PWM_ERR_NULL;

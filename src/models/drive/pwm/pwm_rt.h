@@ -136,36 +136,22 @@ static inline void pwm_rt_advance(pwm_rt *p) {
 
 /*
  * The on-time of a leg over a step whose comparison goes linearly from e0
- * to e1 (Q23, |e0|, |e1| < 2^30), Q15 of the step: PWM_RT_DUTY_ONE or 0
- * without a sign change, else e_pos / (e_pos - e_neg). The division is of
- * 15-bit-or-so operands: both ends shifted right by sh (set-up: a step's
- * carrier change below 2^16) and, if the change is still above 2^16, by
- * more; the quotient is at most 32768 (e_pos <= the change, and the
- * divisor is rounded up by its lowest bit). Integer only; total.
+ * to e1 (Q23, |e0|, |e1| < 2^30), Q15 of the step, when the sign changes
+ * inside it (e0 > 0 >= e1 or e0 <= 0 < e1): e_pos / (e_pos - e_neg). The
+ * division is of operands below 2^16: both shifted right by sh (set-up: a
+ * step's carrier change below 2^16) and, if the change is still above
+ * 2^16, by more; the quotient is at most 32768 (e_pos <= the change, and
+ * the divisor is rounded up by its lowest bit). Integer only; total; out
+ * of line (pwm_rt.c): it runs in the few steps with an edge.
  */
+int32_t pwm_rt_edge_duty(int32_t e0, int32_t e1, uint32_t sh);
+
+/* The on-time of a leg over a step (Q15): the whole step or none without an edge. */
 static inline int32_t pwm_rt_duty(int32_t e0, int32_t e1, uint32_t sh) {
-    uint32_t pos;
-    uint32_t den;
-    if (e0 > 0) {
-        if (e1 > 0) {
-            return PWM_RT_DUTY_ONE;
-        }
-        pos = (uint32_t)e0;
-        den = (uint32_t)e0 - (uint32_t)e1;
-    } else {
-        if (e1 <= 0) {
-            return 0;
-        }
-        pos = (uint32_t)e1;
-        den = (uint32_t)e1 - (uint32_t)e0;
+    if ((e0 > 0) == (e1 > 0)) {
+        return (e1 > 0) ? PWM_RT_DUTY_ONE : 0;
     }
-    pos >>= sh;
-    den >>= sh;
-    while (den > 0xffffu) {
-        pos >>= 1;
-        den >>= 1;
-    }
-    return (int32_t)((pos << 15) / (den | 1u));
+    return pwm_rt_edge_duty(e0, e1, sh);
 }
 
 /*
