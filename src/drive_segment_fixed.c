@@ -583,7 +583,8 @@ void drive_medium_task(drive_segment *d, bool control_due, bool slow_boundary) {
         corr[x] = fp_shr_round_i32(i_end[x], 3u) - s->i_mark[x];
         if (d->stage != NULL) {
             /* Less what the last correction has still to bring after the mark. */
-            corr[x] -= (int32_t)((int64_t)d->corr_prev[x] * d->corr_pending / (int64_t)n);
+            const int64_t pending = (int64_t)d->corr_prev[x] * (int64_t)d->corr_pending;
+            corr[x] -= (int32_t)(pending / (int64_t)n);
             d->corr_prev[x] = corr[x];
         }
     }

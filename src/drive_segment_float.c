@@ -78,9 +78,8 @@ drive_status drive_init(drive_segment *d, const drive_config *cfg, const propell
     d->kernel_ok = (cfg->modulator == DRIVE_MODULATOR_SAMPLED);
     d->plain = d->plain_ok;
     d->staggered = drive_staggered(cfg->down, cfg->fast_per_medium);
-    d->corr_pending = d->staggered ? (float)(cfg->fast_per_medium / 2u) /
-                                         (float)cfg->fast_per_medium
-                                   : 1.0f;
+    const uint32_t half = cfg->fast_per_medium / 2u;
+    d->corr_pending = d->staggered ? (float)half / (float)cfg->fast_per_medium : 1.0f;
     if (induction_motor_load_f32(&d->motor, 1.0, &d->load_next) != INDUCTION_MOTOR_OK) {
         return DRIVE_ERR_MODEL;
     }

@@ -13,15 +13,12 @@
  * table on stderr, with the line of targets (docs/multirate.md, "Speed")
  * met or not, and one JSON object on stdout.
  *
- * The averaged layer is also compared with the single-rate run of the
- * switching-event inverter (edges located inside the 2 us step), the
- * reference for what it models: the default reference's fixed-step
- * switching quantises pulse widths to 50 values per carrier period, which
- * at the start-up's small modulation indices (m < 0.05 for 0.2 s) leaves
- * the voltage vector parked in one sector, so the two references differ
- * by about 7 % in shaft speed over this start-up (docs/multirate.md). Its
- * real-time factor is the best of five runs (one run takes well under a
- * millisecond).
+ * The averaged layer, and the single-rate run of the default (sub-step)
+ * switching model, are also compared with the single-rate run of the
+ * switching-event inverter (edges located inside the 2 us step by the
+ * general modulator), the reference for what they model. The averaged
+ * layer's real-time factor is the best of five runs (one run takes well
+ * under a millisecond).
  *
  * With a third argument, the switching-error study follows (study()): the
  * sampled and sub-step modulators against the single-rate switching-event
@@ -611,7 +608,7 @@ int main(int argc, char **argv) {
     fprintf(stderr, "  against the single-rate switching-event reference:\n");
     fprintf(stderr, "    %-16s %8.3f %8.3f %8.3f %8.3f\n", "averaged", ee.shaft, ee.current,
             ee.surge, ee.position);
-    fprintf(stderr, "    %-16s %8.3f %8.3f %8.3f %8.3f\n", "fixed-step ref", rr.shaft,
+    fprintf(stderr, "    %-16s %8.3f %8.3f %8.3f %8.3f\n", "single-rate dflt", rr.shaft,
             rr.current, rr.surge, rr.position);
     printf("], \"averaged\": {\"err_shaft_speed_pct\": %.6g, \"err_current_pct\": %.6g, "
            "\"err_surge_speed_pct\": %.6g, \"err_position_pct\": %.6g}, "

@@ -47,7 +47,8 @@ int32_t pwm_rt_edge_duty(int32_t e0, int32_t e1, uint32_t sh) {
         pos >>= 1;
         den >>= 1;
     }
-    return (int32_t)((pos << 15) / (den | 1u));
+    const uint32_t q = (pos << 15) / (den | 1u);
+    return (int32_t)q;
 }
 
 pwm_status pwm_rt_dead_time(pwm_rt *p, uint32_t dead_ns, uint32_t step_ns) {
@@ -58,7 +59,9 @@ pwm_status pwm_rt_dead_time(pwm_rt *p, uint32_t dead_ns, uint32_t step_ns) {
         return PWM_ERR_STEP;
     }
     /* t_d / T in Q16, rounded: below 2^19. */
-    p->kd = (int32_t)((((uint64_t)dead_ns << 16) + step_ns / 2u) / step_ns);
+    const uint64_t num = ((uint64_t)dead_ns << 16) + (uint64_t)(step_ns / 2u);
+    const uint64_t kd = num / (uint64_t)step_ns;
+    p->kd = (int32_t)kd;
     return PWM_OK;
 }
 

@@ -176,7 +176,7 @@ static inline void pwm_rt_substep(pwm_rt *p, int32_t s[3], int32_t duty[3]) {
     pwm_rt_ends(p, e0, e1);
     for (int x = 0; x < 3; x++) {
         duty[x] = pwm_rt_duty(e0[x], e1[x], p->den_sh);
-        s[x] = (e1[x] > 0) ? 1 : 0;
+        s[x] = pwm_rt_neg(-e1[x]);
     }
     pwm_rt_advance(p);
 }
@@ -199,7 +199,7 @@ static inline void pwm_rt_substep_dt(pwm_rt *p, const int32_t neg[3], int32_t s[
         const int32_t sft =
             delayed ? (int32_t)fp_shr_floor_i64((int64_t)de * p->kd, 16u) : 0;
         duty[x] = pwm_rt_duty(e0[x] - sft, e1[x] - sft, p->den_sh);
-        s[x] = (e1[x] - sft > 0) ? 1 : 0;
+        s[x] = pwm_rt_neg(sft - e1[x]);
     }
     pwm_rt_advance(p);
 }
