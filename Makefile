@@ -172,7 +172,7 @@ FW_FAST_KERNEL ?= 1
 FW_FAST_C := src/drive_segment_fixed.c src/drive_segment_float.c src/executive.c
 FW_FAST_FLAGS := -fno-schedule-insns -fno-tree-pre -fno-optimize-sibling-calls
 FW_SCENARIO_EVENTS ?= 64
-FW_STACK_BYTES ?= 3072
+FW_STACK_BYTES ?= 3328
 FW_SIM_C := ports/cortexm/fw_main.c
 # Code off the tick paths (the background's vessel and battery, start-up,
 # parsing, formatting) is compiled for size: the Cortex-M3's image must
