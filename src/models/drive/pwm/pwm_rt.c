@@ -59,7 +59,8 @@ pwm_status pwm_rt_dead_time(pwm_rt *p, uint32_t dead_ns, uint32_t step_ns) {
         return PWM_ERR_STEP;
     }
     /* t_d / T in Q16, rounded: below 2^19. */
-    const uint64_t num = ((uint64_t)dead_ns << 16) + (uint64_t)(step_ns / 2u);
+    const uint32_t half = step_ns / 2u;
+    const uint64_t num = ((uint64_t)dead_ns << 16) + (uint64_t)half;
     const uint64_t kd = num / (uint64_t)step_ns;
     p->kd = (int32_t)kd;
     return PWM_OK;
