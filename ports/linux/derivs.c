@@ -112,7 +112,7 @@ static int read_field(const where *w, int col, const char *s, size_t n, double m
         return row_error(w, col, "the number overflows a double", s, n);
     }
     if (max >= 0.0 && !(*v >= -max && *v <= max)) {
-        char what[96];
+        char what[160];
         snprintf(what, sizeof what, "out of range [%g, %g]", -max, max);
         return row_error(w, col, what, s, n);
     }
@@ -152,7 +152,7 @@ static int check_header(const where *w, const char *s, size_t n, int *ncols) {
         snprintf(expected, sizeof expected, "%s%s", c >= NCOLS_IN ? "d_" : "", name);
         if (c >= k || strlen(expected) != len[c] || memcmp(expected, f[c], len[c]) != 0) {
             where h = {w->path, 1};
-            char what[96];
+            char what[160];
             snprintf(what, sizeof what, "expected '%s'%s", expected,
                      c >= k ? ", got the end of the line" : "");
             return row_error(&h, c + 1, what, c < k ? f[c] : NULL, c < k ? len[c] : 0u);
