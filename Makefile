@@ -4,6 +4,7 @@
 #   make firmware      Cortex-M images for every machine and build (build/cortexm-*)
 #   make test          installs missing tools, builds everything, runs every test
 #   make check-tables  exhaustive error of the sine and triangle tables
+#   make host-benches  the host micro-benchmarks and the controller's closed loop (build/tools)
 #   make run           the main job (see README.md)
 #   make view          out/mission.html, the 3-D view of make run's mission
 #
@@ -180,7 +181,8 @@ FW_SIM_C := ports/cortexm/fw_main.c
 # contraction at any level).
 FW_SIZE_C := $(wildcard src/models/vessel/*.c src/models/battery/*.c src/math/*_f64.c) \
              src/math/rem_pio2.c src/scenario.c src/util/fmt.c src/util/parse.c src/manoeuvre.c \
-             src/autopilot.c              src/telemetry.c ports/cortexm/startup.c ports/cortexm/semihost.c
+             src/autopilot.c src/scenario_player.c src/protection.c src/telemetry.c \
+             ports/cortexm/startup.c ports/cortexm/semihost.c
 TEST_PART1 := battery drive_control fixedpoint hal harness induction_motor math telemetry
 TEST_PART2 := $(filter-out $(TEST_PART1),$(SUITES))
 
@@ -311,9 +313,20 @@ $(BUILD)/tools/csvdiff: tools/csvdiff.c
 HOST_TOOLS := $(BUILD)/tools/check_tables $(BUILD)/tools/gen_wavetables \
               $(BUILD)/tools/test_math_libm $(BUILD)/tools/csvdiff
 
+# The host benches and the controller's closed-loop check (tests/host/*.c
+# with a main of their own: libc, libm and the POSIX clock), linked with the
+# fixed build's objects of src/ (each holds every model twin). make test
+# builds them all, so that they keep compiling, and runs sim_drive_control.
+HOST_BENCHES := $(patsubst tests/host/%.c,$(BUILD)/tools/%, \
+    $(sort $(wildcard tests/host/bench_*.c)) tests/host/sim_drive_control.c)
+
+$(HOST_BENCHES): $(BUILD)/tools/%: tests/host/%.c $(linux-fixed_SRC_O)
+	@mkdir -p $(@D)
+	$(CC) $(TOOL_CFLAGS) -fno-builtin -D_POSIX_C_SOURCE=200809L -o $@ $< $(linux-fixed_SRC_O) -lm
+
 # ---- Top-level targets ----------------------------------------------------
 
-.PHONY: all firmware host-all tools test test-run check-tables run view bench clean deps
+.PHONY: all firmware host-all host-benches tools test test-run check-tables run view bench clean deps
 
 all: $(foreach v,linux-fixed linux-float,$(BUILD)/$(v)/unit_tests $(BUILD)/$(v)/uuvsim)
 
@@ -324,6 +337,8 @@ host-all: $(foreach v,$(HOST_VARIANTS),$(BUILD)/$(v)/unit_tests $(BUILD)/$(v)/uu
 firmware: $(FW_IMAGES) $(FW_SIMS) $(BUILD)/cortexm-mps2-an385-fixed/unit_tests_mustfail.elf
 
 tools: $(HOST_TOOLS)
+
+host-benches: $(HOST_BENCHES)
 
 check-tables: $(BUILD)/tools/check_tables
 	@$(BUILD)/tools/check_tables
@@ -336,7 +351,7 @@ deps:
 test: deps
 	@$(MAKE) --no-print-directory test-run
 
-test-run: host-all firmware tools
+test-run: host-all firmware tools host-benches
 	@HOST_VARIANTS="$(HOST_VARIANTS)" FW_VARIANTS="$(FW_VARIANTS)" BUILD="$(BUILD)" \
 	    sh tools/run-tests.sh
 

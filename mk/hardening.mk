@@ -7,6 +7,7 @@
 #   make fuzz       a short campaign of every libFuzzer harness (FUZZ_SECONDS each)
 #   make fuzz-replay  every seed in tests/fuzz/corpus_*/ through its harness
 #   make coverage   gcov/lcov branch coverage of the host unit tests, per folder
+#                   (installs lcov when missing; fails when it gives no figure)
 #   make san-sim    the 60 s desk simulation under ASan + UBSan, both builds
 #   make soak       one hour of the soak mission per build with the energy
 #                   audit (SOAK_SECONDS; make test runs 600 s of it)
@@ -72,6 +73,7 @@ prove:
 	@sh tools/prove.sh
 
 coverage:
+	@sh tools/ensure-deps.sh coverage
 	@BUILD="$(BUILD)" sh tools/coverage.sh
 
 san-sim: $(BUILD)/linux-fixed-san/uuvsim $(BUILD)/linux-float-san/uuvsim

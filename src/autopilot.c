@@ -5,8 +5,7 @@
 
 #include "math/umath.h"
 
-#define AP_PI 3.14159265358979323846
-#define AP_DEG (AP_PI / 180.0)
+#define AP_DEG (MATH_PI_F64 / 180.0)
 
 const autopilot_params autopilot_params_default = {
     .heading_kp = 1.0,
@@ -50,7 +49,7 @@ void autopilot_step(autopilot *a, const double x[VESSEL_NSTATES], double dt, dou
     if (a->heading_on) {
         /* The error the short way round: psi is unwrapped (it counts turns). */
         const double d = a->heading_ref_rad - x[VESSEL_PSI_RAD];
-        const double e = d - (2.0 * AP_PI) * math_round_f64(d / (2.0 * AP_PI));
+        const double e = d - (2.0 * MATH_PI_F64) * math_round_f64(d / (2.0 * MATH_PI_F64));
         fin_move(p, -p->heading_kp * e + p->heading_kd_s * x[VESSEL_R_RADPS], dt, rudder);
     }
     if (a->depth_on) {

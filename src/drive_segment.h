@@ -136,17 +136,6 @@ typedef enum {
 /* [V] under-voltage trip of the DC link (the pack's cut-off is 432 V). */
 #define DRIVE_UV_TRIP_V 300.0
 
-/*
- * Output phase loss: a phase below this fraction of the largest phase's rms
- * current over a window, while that one carries more than
- * DRIVE_PHASE_LOSS_MIN_A [A], trips the drive (the no-load magnetising
- * current is about 10 A rms; with a phase open the healthy two carry 3 to 5
- * times that under load).
- */
-#define DRIVE_PHASE_LOSS_RATIO 0.1
-#define DRIVE_PHASE_LOSS_MIN_A 10.0
-#define DRIVE_PHASE_LOSS_WINDOW_S 0.1 /* [s] measuring window; two in a row trip */
-
 /* What the drive reports to the slow segment, once per slow frame. */
 typedef struct {
     drive_battery battery;   /* the battery companion that was in force over the frame */

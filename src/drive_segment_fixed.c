@@ -17,10 +17,6 @@
 #define Q31_ONE 2147483648.0
 #define Q28_ONE 268435456.0
 
-/* Switch states held per step (fixed-step switching) or edges located inside it. */
-static const pwm_params pwm_sampled = {5000.0, PWM_EDGES_SAMPLED, 0u, 0u};
-static const pwm_params pwm_located = {5000.0, PWM_EDGES_INTERPOLATED, 0u, 0u};
-
 /* round(sum * 2^shift / n) as Q31, saturating: a frame mean. */
 static q31_t mean_q31(int64_t sum, unsigned shift, uint32_t n, uint32_t *sat) {
     int64_t scaled = sum * (int64_t)(1u << shift);
@@ -60,7 +56,7 @@ drive_status drive_init(drive_segment *d, const drive_config *cfg, const propell
     uint32_t mod_ns = cfg->fast_ns;
     induction_motor_params mp = induction_motor_params_15kw_delta;
     if (averaged) {
-        if (inverter_qs_init_q(&d->qs, &pwm_located, cfg->fast_ns, cfg->v_dc0_v) !=
+        if (inverter_qs_init_q(&d->qs, &pwm_params_default, cfg->fast_ns, cfg->v_dc0_v) !=
             INVERTER_AVG_OK) {
             return DRIVE_ERR_MODEL;
         }
@@ -70,8 +66,8 @@ drive_status drive_init(drive_segment *d, const drive_config *cfg, const propell
         mp.rs_ohm += d->ps_params.r_l_ohm;
         mp.lls_h += d->ps_params.l_h;
     } else {
-        if (pwm_init_q(&d->pwm, &pwm_located, cfg->fast_ns) != PWM_OK ||
-            pwm_rt_init(&d->rt, &pwm_sampled, cfg->fast_ns) != PWM_OK ||
+        if (pwm_init_q(&d->pwm, &pwm_params_default, cfg->fast_ns) != PWM_OK ||
+            pwm_rt_init(&d->rt, &pwm_params_sampled, cfg->fast_ns) != PWM_OK ||
             pwm_rt_dead_time(&d->rt, cfg->dead_time_ns, cfg->fast_ns) != PWM_OK ||
             power_stage_init_q(&d->ps, &d->ps_params, cfg->fast_ns,
                                cfg->v_dc0_v) != PS_OK) {
@@ -101,7 +97,7 @@ drive_status drive_init(drive_segment *d, const drive_config *cfg, const propell
     }
     /* First-order filter gain per fast step: step / frame, Q16. */
     d->filt_k = (uint32_t)(65536u / cfg->fast_per_medium);
-    d->k_deriv = fp_from_f64_q31(6.283185307179586 * DRIVE_BASE_FREQ_HZ * fast_s /
+    d->k_deriv = fp_from_f64_q31(MATH_TWO_PI_F64 * DRIVE_BASE_FREQ_HZ * fast_s /
                                  1.7320508075688772);
     d->plain_ok = (d->k32 != 0) && (cfg->inverter == DRIVE_INVERTER_SWITCHING) &&
                (cfg->dead_time_ns == 0u) &&

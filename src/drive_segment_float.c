@@ -13,9 +13,6 @@
 #include "math/umath.h"
 #include "models/drive/inverter/power_stage_fast.h"
 
-static const pwm_params pwm_sampled = {5000.0, PWM_EDGES_SAMPLED, 0u, 0u};
-static const pwm_params pwm_located = {5000.0, PWM_EDGES_INTERPOLATED, 0u, 0u};
-
 drive_status drive_init(drive_segment *d, const drive_config *cfg, const propeller_model *prop) {
     const bool averaged = (cfg->inverter == DRIVE_INVERTER_AVERAGED);
     if (cfg->fast_ns < 100u || cfg->fast_per_medium == 0u || cfg->medium_per_control == 0u ||
@@ -35,7 +32,7 @@ drive_status drive_init(drive_segment *d, const drive_config *cfg, const propell
     uint32_t mod_ns = cfg->fast_ns;
     induction_motor_params mp = induction_motor_params_15kw_delta;
     if (averaged) {
-        if (inverter_qs_init_f32(&d->qs, &pwm_located, cfg->fast_ns, cfg->v_dc0_v) !=
+        if (inverter_qs_init_f32(&d->qs, &pwm_params_default, cfg->fast_ns, cfg->v_dc0_v) !=
             INVERTER_AVG_OK) {
             return DRIVE_ERR_MODEL;
         }
@@ -45,8 +42,8 @@ drive_status drive_init(drive_segment *d, const drive_config *cfg, const propell
         mp.rs_ohm += d->ps_params.r_l_ohm;
         mp.lls_h += d->ps_params.l_h;
     } else {
-        if (pwm_init_f32(&d->pwm, &pwm_located, cfg->fast_ns) != PWM_OK ||
-            pwm_rt_init(&d->rt, &pwm_sampled, cfg->fast_ns) != PWM_OK ||
+        if (pwm_init_f32(&d->pwm, &pwm_params_default, cfg->fast_ns) != PWM_OK ||
+            pwm_rt_init(&d->rt, &pwm_params_sampled, cfg->fast_ns) != PWM_OK ||
             pwm_rt_dead_time(&d->rt, cfg->dead_time_ns, cfg->fast_ns) != PWM_OK ||
             power_stage_init_f32(&d->ps, &d->ps_params, cfg->fast_ns,
                                  cfg->v_dc0_v) != PS_OK) {
@@ -71,7 +68,7 @@ drive_status drive_init(drive_segment *d, const drive_config *cfg, const propell
         return DRIVE_ERR_MODEL;
     }
     d->filt_k = 1.0f / (float)cfg->fast_per_medium;
-    d->k_deriv = (float)(6.283185307179586 * fast_s / 1.7320508075688772);
+    d->k_deriv = (float)(MATH_TWO_PI_F64 * fast_s / 1.7320508075688772);
     d->plain_ok = (cfg->inverter == DRIVE_INVERTER_SWITCHING) && (cfg->dead_time_ns == 0u) &&
                (cfg->down == COUPLE_ZOH || cfg->down == COUPLE_STAGGER) &&
                (cfg->up != COUPLE_FILTER) && !cfg->energy_audit;

@@ -6,7 +6,7 @@
 #include "math/umath.h"
 #include "util/fmt.h"
 
-#define RPM_TO_RADPS (3.14159265358979323846 / 30.0)
+#define RPM_TO_RADPS (MATH_PI_F64 / 30.0)
 
 /*
  * The fast step after which a split boundary releases the motor task: the
@@ -36,147 +36,26 @@ void exec_config_default(exec_config *cfg) {
     cfg->medium_per_slow = 1000u;
 }
 
-/* ---- Scenario player (background) ---------------------------------------- */
-
-/* The fin commands, in the order of the fin_jam values and the actual-angle states. */
-static double *fin_command(vessel_cmd *c, int k) {
-    double *fins[4] = {&c->rudder_rad, &c->stern_rad, &c->bow_port_rad, &c->bow_stbd_rad};
-    return fins[k];
-}
+/* ---- Scenario commands (background) ------------------------------------- */
 
 /*
- * A fault command (background): recorded in the mask the records carry;
- * drive faults go to the drive, which applies them at the next slow
- * boundary; a jammed fin holds its actual angle from now on.
+ * Applies the commands due at the slow boundary t (scenario_player.h): the
+ * timed events, each fault passed on to the drive, which applies it at the
+ * next slow boundary; then the steering rules (zig-zag, autopilots) over
+ * the reporting period that begins.
  */
-static void apply_fault(exec *e, const scenario_event *ev) {
-    e->fault_mask |= 1u << (ev->command - (uint16_t)SCN_FIRST_FAULT);
-    switch ((scenario_command)ev->command) {
-    case SCN_FAULT_SWITCH_OPEN: e->dfault.switch_open = (uint8_t)ev->value; break;
-    case SCN_FAULT_LEG_SHORT: e->dfault.leg_short = (uint8_t)ev->value; break;
-    case SCN_FAULT_DC_CAP: e->dfault.dc_cap_frac = ev->value; break;
-    case SCN_FAULT_CURRENT_OFFSET: e->dfault.current_offset_a = ev->value; break;
-    case SCN_FAULT_PHASE_OPEN: e->dfault.phase_open = (uint8_t)ev->value; break;
-    case SCN_FAULT_PROP_FOULING: e->dfault.load_factor = ev->value; break;
-    case SCN_FAULT_BATTERY_CUTOFF: e->battery_cut = true; break;
-    case SCN_FAULT_FIN_JAM: {
-        int k = (int)ev->value - 1;
-        e->fin_jammed[k] = true;
-        *fin_command(&e->cmd, k) = e->x[VESSEL_DELTA_R_RAD + k];
-        break;
+static void apply_commands(exec *e, double t) {
+    for (player_event ev = player_next(&e->player, t, e->x, &e->cmd); ev != PLAYER_IDLE;
+         ev = player_next(&e->player, t, e->x, &e->cmd)) {
+        if (ev == PLAYER_FAULT && e->cfg.plant == EXEC_PLANT_FULL && e->drive_ready) {
+            drive_fault_request(&e->drive, &e->player.faults);
+        }
     }
-    default: break;
-    }
-    if (e->cfg.plant == EXEC_PLANT_FULL && e->drive_ready) {
-        drive_fault_request(&e->drive, &e->dfault);
-    }
-}
-
-static void apply_event(exec *e, const scenario_event *ev) {
-    vessel_cmd *c = &e->cmd;
-    if (ev->command >= (uint16_t)SCN_FIRST_FAULT) {
-        apply_fault(e, ev);
-        return;
-    }
-    if (ev->command <= (uint16_t)SCN_BOW_STBD && e->fin_jammed[ev->command]) {
-        return; /* a jammed fin ignores its commands */
-    }
-    switch ((scenario_command)ev->command) {
-    /* A manual rudder or stern command takes that axis from its autopilot. */
-    case SCN_RUDDER:
-        c->rudder_rad = ev->value;
-        e->ap.heading_on = false;
-        break;
-    case SCN_STERN:
-        c->stern_rad = ev->value;
-        e->ap.depth_on = false;
-        break;
-    case SCN_BOW_PORT: c->bow_port_rad = ev->value; break;
-    case SCN_BOW_STBD: c->bow_stbd_rad = ev->value; break;
-    case SCN_N_RPM: c->n_rpm = ev->value; break;
-    case SCN_BUOYANCY: c->delta_b_n = ev->value; break;
-    case SCN_HEADING: autopilot_set_heading(&e->ap, ev->value); break;
-    case SCN_DEPTH: autopilot_set_depth(&e->ap, ev->value); break;
-    case SCN_AUTOPILOT:
-        /* Both off, the fins they drove amidships (a jammed fin stays). */
-        e->ap.heading_on = e->ap.depth_on = false;
-        c->rudder_rad = e->fin_jammed[0] ? c->rudder_rad : 0.0;
-        c->stern_rad = e->fin_jammed[1] ? c->stern_rad : 0.0;
-        break;
-    default: break;
-    }
+    player_steer(&e->player, t, e->x, e->report_s, &e->cmd);
 }
 
 void exec_command(exec *e, scenario_command c, double value) {
-    if (c < SCN_FIRST_FAULT) {
-        scenario_event ev = {0};
-        ev.t_s = (double)e->frame * e->slow_s;
-        ev.value = value;
-        ev.command = (uint16_t)c;
-        apply_event(e, &ev);
-        if (c == SCN_N_RPM) {
-            e->speed_rpm = value; /* the medium task's command in force (speed_command_at) */
-        }
-    }
-}
-
-/* The zig-zag rule, decided at the start of each slow step from the heading. */
-static void zigzag_rule(exec *e, double t) {
-    const scenario_zigzag *z = &e->scn->zigzag;
-    bool active = z->enabled && t >= z->start_s - 1e-9 && (z->stop_s < 0.0 || t < z->stop_s);
-    if (!active) {
-        if (e->zz_rudder != 0.0 && !e->fin_jammed[0]) {
-            e->cmd.rudder_rad = 0.0; /* the zig-zag ended: rudder amidships */
-            e->zz_rudder = 0.0;
-        }
-        return;
-    }
-    double psi = e->x[VESSEL_PSI_RAD];
-    e->ap.heading_on = false; /* the zig-zag drives the rudder */
-    if (e->zz_rudder == 0.0) {
-        e->zz_psi0 = psi;
-        e->zz_rudder = z->rudder_rad;
-    } else if (e->zz_rudder > 0.0 && psi - e->zz_psi0 <= -z->heading_rad) {
-        e->zz_rudder = -z->rudder_rad;
-    } else if (e->zz_rudder < 0.0 && psi - e->zz_psi0 >= z->heading_rad) {
-        e->zz_rudder = z->rudder_rad;
-    }
-    if (!e->fin_jammed[0]) {
-        e->cmd.rudder_rad = e->zz_rudder;
-    }
-}
-
-/* Applies the commands due at the slow boundary t: events at or before t. */
-static void apply_commands(exec *e, double t) {
-    double due = t + 1e-9 * e->slow_s;
-    while (e->next_event < e->scn->n_events && e->scn->events[e->next_event].t_s <= due) {
-        apply_event(e, &e->scn->events[e->next_event]);
-        e->next_event++;
-    }
-    zigzag_rule(e, t);
-    /* The autopilots, on the fins that are free (a jammed fin holds). */
-    double rudder = e->cmd.rudder_rad;
-    double stern = e->cmd.stern_rad;
-    autopilot_step(&e->ap, e->x, e->report_s, &rudder, &stern);
-    e->cmd.rudder_rad = e->fin_jammed[0] ? e->cmd.rudder_rad : rudder;
-    e->cmd.stern_rad = e->fin_jammed[1] ? e->cmd.stern_rad : stern;
-}
-
-/*
- * The shaft speed command in force at time t, for the medium task: it keeps
- * its own cursor in the (read-only) scenario, so the command reaches the
- * controller at the controller's rate, not a slow frame late.
- */
-static double speed_command_at(exec *e, double t) {
-    double due = t + 1e-12;
-    while (e->speed_cursor < e->scn->n_events && e->scn->events[e->speed_cursor].t_s <= due) {
-        const scenario_event *ev = &e->scn->events[e->speed_cursor];
-        if (ev->command == SCN_N_RPM) {
-            e->speed_rpm = ev->value;
-        }
-        e->speed_cursor++;
-    }
-    return e->speed_rpm;
+    player_command(&e->player, c, value, &e->cmd);
 }
 
 /* ---- Initialisation ------------------------------------------------------ */
@@ -271,13 +150,12 @@ static exec_status init_drive(exec *e) {
     }
     drive_start(&e->drive, &b0);
     e->drive_ready = true;
-    if (e->fault_mask != 0u) {
-        drive_fault_request(&e->drive, &e->dfault);
+    if (e->player.fault_mask != 0u) {
+        drive_fault_request(&e->drive, &e->player.faults);
     }
     e->bat_next = b0;
-    (void)speed_command_at(e, 0.0);
-    e->speed_report_rpm = e->speed_rpm;
-    drive_speed_command(&e->drive, e->speed_rpm * RPM_TO_RADPS);
+    e->speed_report_rpm = player_speed_at(&e->player, 0.0);
+    drive_speed_command(&e->drive, e->speed_report_rpm * RPM_TO_RADPS);
     return EXEC_OK;
 }
 
@@ -327,10 +205,7 @@ static void make_report(exec *e);
 exec_status exec_init(exec *e, const exec_config *cfg, const scenario *scn) {
     *e = (exec){0};
     e->cfg = *cfg;
-    e->dfault.dc_cap_frac = 1.0;
-    e->dfault.load_factor = 1.0;
     e->trip_t_s = -1.0;
-    e->scn = scn;
     double duration = (cfg->duration_s > 0.0) ? cfg->duration_s : scn->duration_s;
     if (!(cfg->soc0 > 0.0 && cfg->soc0 <= 1.0) || cfg->plant > EXEC_PLANT_FULL) {
         return EXEC_ERR_CONFIG;
@@ -354,7 +229,8 @@ exec_status exec_init(exec *e, const exec_config *cfg, const scenario *scn) {
     for (int i = 0; i < VESSEL_NSTATES; i++) {
         e->x[i] = scn->init[i];
     }
-    autopilot_init(&e->ap);
+    player_init(&e->player, scn, e->slow_s);
+    protection_init(&e->prot, e->slow_s);
     manoeuvre_init(&e->man, scn->zigzag.enabled, scn->zigzag.heading_rad, scn->zigzag.start_s);
     apply_commands(e, 0.0);
     if (cfg->plant == EXEC_PLANT_FULL) {
@@ -492,7 +368,7 @@ bool exec_medium_tick(exec *e) {
         if (e->slow_pending) {
             overrun(e, &e->count.overruns_slow);
         } else {
-            e->speed_report_rpm = e->speed_rpm;
+            e->speed_report_rpm = e->player.speed_rpm;
             e->slow_pending = true;
         }
     }
@@ -510,7 +386,7 @@ void exec_control_tick(exec *e) {
         return;
     }
     double t = 1e-9 * (double)e->control_time_ns;
-    drive_speed_command(&e->drive, speed_command_at(e, t) * RPM_TO_RADPS);
+    drive_speed_command(&e->drive, player_speed_at(&e->player, t) * RPM_TO_RADPS);
     drive_control_task(&e->drive);
     e->count.control++;
     e->control_busy = false;
@@ -519,40 +395,6 @@ void exec_control_tick(exec *e) {
 /* ---- Slow rate ----------------------------------------------------------- */
 
 bool exec_slow_pending(const exec *e) { return e->slow_pending; }
-
-/*
- * The drive's output phase-loss protection, in the background on the slow
- * frames' measurements, over windows of DRIVE_PHASE_LOSS_WINDOW_S (several
- * electrical periods whatever the slow frame): one phase's rms current
- * below DRIVE_PHASE_LOSS_RATIO of the largest, while that one carries more
- * than DRIVE_PHASE_LOSS_MIN_A, in two windows running trips the drive at
- * the next slow boundary.
- */
-static void phase_loss_check(exec *e, const drive_slow_meas *m) {
-    for (int x = 0; x < 3; x++) {
-        e->pl_sq[x] += m->i_phase_rms_a[x] * m->i_phase_rms_a[x] * e->slow_s;
-    }
-    e->pl_t += e->slow_s;
-    if (e->pl_t < DRIVE_PHASE_LOSS_WINDOW_S * (1.0 - 1e-9)) {
-        return;
-    }
-    double lo = e->pl_sq[0];
-    double hi = lo;
-    for (int x = 1; x < 3; x++) {
-        lo = (e->pl_sq[x] < lo) ? e->pl_sq[x] : lo;
-        hi = (e->pl_sq[x] > hi) ? e->pl_sq[x] : hi;
-    }
-    /* On mean squares: the thresholds squared. */
-    const double r = DRIVE_PHASE_LOSS_RATIO;
-    const double i_min = DRIVE_PHASE_LOSS_MIN_A;
-    bool lost = hi > i_min * i_min * e->pl_t && lo < r * r * hi;
-    e->pl_windows = lost ? e->pl_windows + 1u : 0u;
-    e->pl_sq[0] = e->pl_sq[1] = e->pl_sq[2] = 0.0;
-    e->pl_t = 0.0;
-    if (e->pl_windows >= 2u) {
-        drive_trip_request(&e->drive, DRIVE_TRIP_PHASE_LOSS);
-    }
-}
 
 /* The battery's frame from the bus voltage the drive measured (i = G v - b). */
 static void battery_frame(exec *e) {
@@ -586,10 +428,13 @@ static void battery_frame(exec *e) {
     e->acc_n++;
     battery_companion bc = battery_companion_f64(&e->bat);
     /* The contactor open (battery_cutoff): no current either way. */
-    e->bat_next.g_s = e->battery_cut ? 0.0 : bc.g_s;
-    e->bat_next.b_a = e->battery_cut ? 0.0 : bc.b_a;
+    e->bat_next.g_s = e->player.battery_cut ? 0.0 : bc.g_s;
+    e->bat_next.b_a = e->player.battery_cut ? 0.0 : bc.b_a;
     drive_battery_next(&e->drive, &e->bat_next);
-    phase_loss_check(e, m);
+    drive_trip why = protection_step(&e->prot, m->i_phase_rms_a);
+    if (why != DRIVE_TRIP_NONE) {
+        drive_trip_request(&e->drive, why);
+    }
     if (m->trip != DRIVE_TRIP_NONE && e->trip_t_s < 0.0) {
         e->trip_t_s = (double)e->frame * e->slow_s;
     }
@@ -647,7 +492,7 @@ static void make_report(exec *e) {
                            r->f_hz;
         e->nonfinite = math_isfinite_f64(sum) ? 0u : EXEC_NONFINITE_DRIVE;
     }
-    r->faults = e->fault_mask;
+    r->faults = e->player.fault_mask;
     e->acc_te = e->acc_i_sq = e->acc_v_dc = e->acc_i_batt = e->acc_m = e->acc_f = 0.0;
     e->acc_n = 0u;
     e->report_ready = (e->nonfinite == 0u);
@@ -676,7 +521,7 @@ void exec_slow_step(exec *e) {
                         x[VESSEL_W_MPS] * x[VESSEL_W_MPS];
         manoeuvre_update(&e->man, t, x[VESSEL_X_M], x[VESSEL_Y_M], x[VESSEL_PSI_RAD],
                          math_sqrt_f64(speed2), x[VESSEL_R_RADPS],
-                         e->ap.heading_on ? 0.0 : e->cmd.rudder_rad); /* manual turns only */
+                         e->player.ap.heading_on ? 0.0 : e->cmd.rudder_rad); /* manual turns only */
     }
     (void)vessel_step(&e->vessel, e->x, &e->cmd);
     e->frame++;

@@ -49,13 +49,14 @@
 #include <stdbool.h>
 #include <stdint.h>
 
-#include "autopilot.h"
 #include "drive_segment.h"
 #include "manoeuvre.h"
 #include "models/battery/battery.h"
 #include "models/propeller/propeller.h"
 #include "models/vessel/vessel.h"
+#include "protection.h"
 #include "scenario.h"
+#include "scenario_player.h"
 
 typedef enum {
     EXEC_PLANT_VESSEL = 0, /* vessel alone, shaft speed commanded through its lag */
@@ -145,7 +146,6 @@ typedef struct {
     uint32_t fast_event_at;   /* fast_phase of the tick's next event (fast_event()) */
     uint32_t medium_left;     /* motor frames of the run not yet ended */
     exec_config cfg;
-    const scenario *scn;
     /* Frames. */
     uint32_t slow_per_report; /* slow frames per telemetry record */
     double slow_s;            /* [s] slow frame */
@@ -162,26 +162,17 @@ typedef struct {
     uint32_t frame;           /* slow frames done */
     uint32_t nonfinite;       /* EXEC_STOP_NONFINITE: what became non-finite in frame `frame`;
                                * report then holds the last finite record */
-    size_t next_event;
-    /* Faults injected by the scenario (exec_frame.faults, drive_faults). */
-    uint32_t fault_mask;
-    bool fin_jammed[4];
-    bool battery_cut;         /* the pack's contactor is open */
-    drive_faults dfault;
+    scenario_player player;   /* the scenario's commands, faults and autopilots (scenario_player.h) */
+    protection prot;          /* the drive's phase-loss protection (protection.h) */
     bool drive_ready;         /* the drive is initialised (faults may be requested) */
-    double trip_t_s;          /* [s] when the protection tripped (< 0: it has not) */
-    double pl_sq[3], pl_t;    /* phase-loss window: [A^2 s] per phase, [s] its length */
-    uint32_t pl_windows;      /* windows running that showed a phase loss */
-    double zz_rudder, zz_psi0;
-    autopilot ap;             /* heading and depth hold (scenario commands) */
+    double trip_t_s;          /* [s] when the drive tripped (< 0: it has not) */
     manoeuvre man;
     /* Drive (full plant). */
     drive_segment drive;
-    size_t speed_cursor;      /* the medium task's place in the scenario */
-    double speed_rpm;         /* its shaft speed command in force */
-    double speed_report_rpm;  /* that command at the last slow boundary, for the record:
-                               * the slow step must not read speed_rpm, which the medium
-                               * task may change while a preempted slow step runs */
+    double speed_report_rpm;  /* the controller's speed command (player.speed_rpm) at the
+                               * last slow boundary, for the record: the slow step must not
+                               * read player.speed_rpm, which the controller task may change
+                               * while a preempted slow step runs */
     double shaft_start_rpm;   /* [rpm] shaft speed at the start of the slow frame */
     /* Schedule (continued). */
     uint32_t stagger_at;      /* fast_phase of the staggered latch (0: not staggered) */

@@ -5,8 +5,7 @@
 
 #include "math/umath.h"
 
-#define PI 3.14159265358979323846
-#define RAD_TO_DEG (180.0 / PI)
+#define RAD_TO_DEG (180.0 / MATH_PI_F64)
 
 static double abs_d(double v) { return v < 0.0 ? -v : v; }
 
@@ -54,7 +53,7 @@ static void turning_update(manoeuvre *m, double t, double x, double y, double ps
     double dpsi = abs_d(psi - m->psi0);
     if (m->have_prev) {
         /* Interpolate the crossing of 90 and 180 degrees between frames. */
-        static const double marks[2] = {PI / 2.0, PI};
+        static const double marks[2] = {MATH_PI_F64 / 2.0, MATH_PI_F64};
         for (int k = 0; k < 2; k++) {
             bool done = (k == 0) ? m->r.has_advance : m->r.has_tactical;
             if (done || !(m->prev_dpsi < marks[k] && dpsi >= marks[k])) {
@@ -77,7 +76,7 @@ static void turning_update(manoeuvre *m, double t, double x, double y, double ps
         }
     }
     /* The floors keep both quotients finite (a yaw rate of 1e-6 rad/s is no turn). */
-    if (dpsi >= 2.0 * PI && abs_d(yaw_rate) > 1e-6) {
+    if (dpsi >= 2.0 * MATH_PI_F64 && abs_d(yaw_rate) > 1e-6) {
         m->r.has_steady = true;
         m->r.steady_diameter_m = 2.0 * speed / abs_d(yaw_rate);
         m->r.speed_loss_pct = (m->speed0 > 1e-6) ? 100.0 * (1.0 - speed / m->speed0) : 0.0;

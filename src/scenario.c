@@ -7,10 +7,11 @@
 
 #include <stdarg.h>
 
+#include "math/umath.h"
 #include "util/fmt.h"
 #include "util/parse.h"
 
-#define DEG_TO_RAD (3.14159265358979323846 / 180.0)
+#define DEG_TO_RAD MATH_DEG_TO_RAD_F64
 #define MAX_TOKENS 32u
 #define MAX_TIME_S 1.0e6
 
@@ -68,7 +69,7 @@ static const value_rule state_rules[VESSEL_NSTATES] = {
     {"m/s", false, -3.0, 3.0, NULL},       {"rad/s", false, -5.0, 5.0, NULL},
     {"rad/s", false, -3.0, 3.0, NULL},     {"rad/s", false, -3.0, 3.0, NULL},
     {"m", false, -1e7, 1e7, NULL},         {"m", false, -1e7, 1e7, NULL},
-    {"m", false, -1e4, 1e4, NULL},         {"rad", true, -3.1415926535897931, 3.1415926535897931, NULL},
+    {"m", false, -1e4, 1e4, NULL},         {"rad", true, -MATH_PI_F64, MATH_PI_F64, NULL},
     {"rad", true, -80.0 * DEG_TO_RAD, 80.0 * DEG_TO_RAD, NULL},
     {"rad", true, -1e3, 1e3, NULL},
     {"rad", true, -45.0 * DEG_TO_RAD, 45.0 * DEG_TO_RAD, NULL},

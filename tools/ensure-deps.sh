@@ -7,6 +7,7 @@
 #   ensure-deps.sh        what make test needs
 #   ensure-deps.sh view   what make view needs (three.js)
 #   ensure-deps.sh run    what make run needs (gnuplot, for the plots)
+#   ensure-deps.sh coverage   what make coverage needs (lcov; gcov comes with gcc)
 set -u
 
 missing=""
@@ -17,6 +18,9 @@ if [ "${1:-}" = view ]; then
     need_three
 elif [ "${1:-}" = run ]; then
     need gnuplot gnuplot-nox
+elif [ "${1:-}" = coverage ]; then
+    need gcov gcc
+    need lcov lcov
 else
     need_three
     need chromium chromium

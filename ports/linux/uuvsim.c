@@ -20,6 +20,7 @@
 #include "cli.h"
 #include "csv_out.h"
 #include "live.h"
+#include "math/umath.h"
 #include "uuv_config.h"
 #include "view.h"
 
@@ -202,7 +203,7 @@ static void print_json(FILE *f_out, const run_result *r) {
         print_energy_balance(f_out, e);
     }
     fprintf(f_out, "  \"faults\": [");
-    print_faults(f_out, e->fault_mask, ", ", "\"");
+    print_faults(f_out, e->player.fault_mask, ", ", "\"");
     fprintf(f_out, "],\n  \"protection\": {\"tripped\": %s, \"reason\": \"%s\"",
             f->trip != 0u ? "true" : "false",
             out_trip_names[f->trip < OUT_TRIP_NAMES ? f->trip : 0u]);
@@ -312,17 +313,17 @@ static void print_text(const run_result *r) {
                    c->e_loss_motor_j / 3600.0, c->e_mech_j / 3600.0, res / 3600.0,
                    c->e_batt_j != 0.0 ? 100.0 * res / c->e_batt_j : 0.0);
         }
-        if (e->fault_mask != 0u || f->trip != 0u) {
+        if (e->player.fault_mask != 0u || f->trip != 0u) {
             printf("faults injected: ");
-            print_faults(stdout, e->fault_mask, ", ", "");
-            printf("%s; protection: %s\n", e->fault_mask != 0u ? "" : "none",
+            print_faults(stdout, e->player.fault_mask, ", ", "");
+            printf("%s; protection: %s\n", e->player.fault_mask != 0u ? "" : "none",
                    f->trip != 0u ? out_trip_names[f->trip < OUT_TRIP_NAMES ? f->trip : 0u]
                                  : "not tripped");
         }
     }
     /* The state psi is unwrapped (it counts whole turns); the line gives the
      * compass heading in [0, 360) and psi itself beside it. */
-    const double psi_deg = f->x[VESSEL_PSI_RAD] * 57.29577951308232;
+    const double psi_deg = f->x[VESSEL_PSI_RAD] * MATH_RAD_TO_DEG_F64;
     long long tenths = llround(psi_deg * 10.0) % 3600;
     if (tenths < 0) {
         tenths += 3600;

@@ -51,7 +51,9 @@ uint32_t hal_cycles(void);
 
 /*
  * Masks the tick contexts; calls nest. On a bare-metal target this is a
- * nested interrupt mask; on the host it is a counter (one thread).
+ * nested interrupt mask; on the host it is a counter (one thread). A tick
+ * that falls due inside runs at the outermost exit. An exit without an
+ * enter does nothing.
  */
 void hal_critical_enter(void);
 void hal_critical_exit(void);
@@ -84,7 +86,9 @@ void hal_control_release(void);
 
 /*
  * Waits in the background context until a tick has run (sleep until the
- * next interrupt on a target; run the next fast tick on the host).
+ * next interrupt on a target; run the next fast tick on the host). Inside
+ * a critical section it returns once a tick has fallen due, which then
+ * runs at the section's exit: the way to sleep without missing a wake-up.
  */
 void hal_wait_for_tick(void);
 

@@ -44,6 +44,7 @@
 #define MATH_SQRT2_F64 0x1.6a09e667f3bcdp+0      /* 1.41421356237309504880 */
 #define MATH_DEG_TO_RAD_F64 0x1.1df46a2529d39p-6 /* pi / 180 = 0.01745329251994329577 */
 #define MATH_RAD_TO_DEG_F64 0x1.ca5dc1a63c1f8p+5 /* 180 / pi = 57.2957795130823208768 */
+#define MATH_RAD_TO_RPM_F64 0x1.3193d66ed2bfap+3 /* 30 / pi = 9.54929658551372014613 */
 
 #define MATH_PI_F32 0x1.921fb6p+1f
 #define MATH_TWO_PI_F32 0x1.921fb6p+2f
@@ -56,6 +57,7 @@
 #define MATH_SQRT2_F32 0x1.6a09e6p+0f
 #define MATH_DEG_TO_RAD_F32 0x1.1df46ap-6f
 #define MATH_RAD_TO_DEG_F32 0x1.ca5dc2p+5f
+#define MATH_RAD_TO_RPM_F32 0x1.3193d6p+3f
 
 /* Views of a value as its bit pattern (type punning through a union is C99). */
 typedef union {

@@ -6,19 +6,14 @@
  * propeller load) so that the timed calls see the branches of a real run;
  * the timing loop then replays them.
  *
- * Build (host only, libc and libm allowed), from the top of the tree:
- *   gcc -std=c99 -O2 -Wall -Wextra -Wpedantic -Wconversion -Wdouble-promotion -Wshadow
- *       -Werror -ffp-contract=off -D_POSIX_C_SOURCE=200809L -Isrc
- *       -o build/bench_drive_control tests/host/bench_drive_control.c
- *       src/models/drive/control/drive_control.c src/models/drive/control/drive_control_params.c
- *       src/models/drive/control/drive_control_q.c src/models/drive/control/drive_control_f32.c
- *       (every .c file of src/fixedpoint and of src/math) -lm
+ * Build: make host-benches (build/tools/bench_drive_control).
  */
 #include <math.h>
 #include <stdio.h>
 #include <time.h>
 
 #include "fixedpoint/fixedpoint.h"
+#include "math/umath.h"
 #include "models/drive/control/drive_control.h"
 #include "models/drive/drive_units.h"
 
@@ -59,7 +54,7 @@ static void record(void) {
         drive_control_step_f32(&c, &in, &o);
         double torque = d.kt_nm_per_hz * ((double)o.freq_hz - d.fr_hz_per_radps * w);
         w += 800e-6 * (torque - 0.0023681 * w * fabs(w)) / 0.113;
-        th += 2.0 * 3.141592653589793 * (double)o.freq_hz * 800e-6;
+        th += MATH_TWO_PI_F64 * (double)o.freq_hz * 800e-6;
     }
 }
 

@@ -5,23 +5,19 @@
  * The stimulus is precomputed (one period of step-mean voltages), so only
  * the step is timed. Host-only: uses libc, libm and the POSIX clock.
  *
- * Build (from the repository root):
- *   gcc -std=c99 -O2 -Wall -Wextra -Wpedantic -Wconversion -Wdouble-promotion -Wshadow \
- *       -Werror -ffp-contract=off -fno-builtin -D_POSIX_C_SOURCE=200809L -Isrc \
- *       tests/host/bench_induction_motor.c src/models/drive/motor/induction_motor*.c \
- *       src/models/propeller/propeller.c src/fixedpoint/fixedpoint.c -lm -o bench_induction_motor
+ * Build: make host-benches (build/tools/bench_induction_motor).
  */
 #include <math.h>
 #include <stdio.h>
 #include <time.h>
 
+#include "math/umath.h"
 #include "models/drive/drive_units.h"
 #include "models/drive/motor/induction_motor.h"
 
 #define STEP_S 100e-6
 #define PERIOD_STEPS 197 /* about one period of 50.67 Hz at 10 kHz */
 #define RUNS 5
-#define PI 3.14159265358979323846
 #define STEPS_PER_RUN 2000000L
 
 static double v_f64[PERIOD_STEPS][3];
@@ -37,11 +33,11 @@ static double now_ns(void) {
 
 static void make_stimulus(void) {
     const double amp = 234.0 * sqrt(2.0 / 3.0);
-    const double w = 2.0 * PI * 50.67;
+    const double w = 2.0 * MATH_PI_F64 * 50.67;
     for (int n = 0; n < PERIOD_STEPS; n++) {
         const double th = w * ((double)n + 0.5) * STEP_S;
         for (int k = 0; k < 3; k++) {
-            v_f64[n][k] = amp * cos(th - 2.0 * PI * (double)k / 3.0);
+            v_f64[n][k] = amp * cos(th - 2.0 * MATH_PI_F64 * (double)k / 3.0);
             v_f32[n][k] = (float)v_f64[n][k];
             v_q[n][k] = fp_pu_from_f64_q31(v_f64[n][k], DRIVE_BASE_VOLTAGE_V);
         }

@@ -12,28 +12,20 @@
  * when it reaches its command within 0.5 % and the integer twin counted no
  * saturation.
  *
- * Build (from the top of the tree):
- *   gcc -std=c99 -O2 -Wall -Wextra -Wpedantic -Wconversion -Wdouble-promotion -Wshadow
- *       -Werror -ffp-contract=off -fno-builtin -D_POSIX_C_SOURCE=200809L -Isrc
- *       -o build/sim_drive_control tests/host/sim_drive_control.c
- *       src/models/drive/control/drive_control.c src/models/drive/control/drive_control_params.c
- *       src/models/drive/control/drive_control_q.c src/models/drive/control/drive_control_f32.c
- *       src/models/drive/motor/induction_motor_coef.c src/models/drive/motor/induction_motor_f64.c
- *       src/models/drive/motor/induction_motor_params.c src/models/propeller/propeller.c
- *       (every .c file of src/fixedpoint and of src/math) -lm
+ * Build: make host-benches (build/tools/sim_drive_control); make test runs it.
  */
 #include <math.h>
 #include <stdbool.h>
 #include <stdio.h>
 
 #include "fixedpoint/fixedpoint.h"
+#include "math/umath.h"
 #include "models/drive/control/drive_control.h"
 #include "models/drive/drive_units.h"
 #include "models/drive/motor/induction_motor.h"
 #include "models/propeller/propeller.h"
 
-#define PI 3.14159265358979323846
-#define W_1500 (1500.0 * PI / 30.0)
+#define W_1500 (1500.0 * MATH_PI_F64 / 30.0)
 #define MOTOR_STEP 100e-6
 #define STEPS_PER_FRAME 8u
 #define PWM_STEPS_PER_MOTOR_STEP 50u
@@ -100,15 +92,15 @@ typedef struct {
  */
 static void plant_frame(plant_t *p, double vdc, run_t *r) {
     double amp = p->cmd.m * vdc * 0.5;
-    double d = (double)(int32_t)p->cmd.inc * PWM_STEPS_PER_MOTOR_STEP * (2.0 * PI / 4294967296.0);
+    double d = (double)(int32_t)p->cmd.inc * PWM_STEPS_PER_MOTOR_STEP * (2.0 * MATH_PI_F64 / 4294967296.0);
     double sinc = (fabs(d) > 1e-12) ? sin(0.5 * d) / (0.5 * d) : 1.0;
     double acc[3] = {0.0, 0.0, 0.0};
     double w_acc = 0.0;
     for (unsigned k = 0u; k < STEPS_PER_FRAME; k++) {
-        double th = (double)p->phase * (2.0 * PI / 4294967296.0) + 0.5 * d;
+        double th = (double)p->phase * (2.0 * MATH_PI_F64 / 4294967296.0) + 0.5 * d;
         p->phase += p->cmd.inc * PWM_STEPS_PER_MOTOR_STEP; /* modulo 2^32, like the PWM */
-        induction_motor_in_f64 in = {amp * sinc * cos(th), amp * sinc * cos(th - 2.0 * PI / 3.0),
-                                     amp * sinc * cos(th + 2.0 * PI / 3.0)};
+        induction_motor_in_f64 in = {amp * sinc * cos(th), amp * sinc * cos(th - 2.0 * MATH_PI_F64 / 3.0),
+                                     amp * sinc * cos(th + 2.0 * MATH_PI_F64 / 3.0)};
         induction_motor_out_f64 out;
         induction_motor_step_f64(&p->motor, &in, &out);
         acc[0] += out.i_a;
@@ -193,10 +185,10 @@ static void scenario(bool fixed) {
     run_t r;
     run(&c, &p, W_1500, 432.0, 2.0, &r);
     report("start 0->1500 rpm, 432 V", &c, W_1500, 0.0, &r, false);
-    run(&c, &p, 1000.0 * PI / 30.0, 432.0, 1.5, &r);
-    report("step 1500->1000 rpm", &c, 1000.0 * PI / 30.0, W_1500, &r, false);
+    run(&c, &p, 1000.0 * MATH_PI_F64 / 30.0, 432.0, 1.5, &r);
+    report("step 1500->1000 rpm", &c, 1000.0 * MATH_PI_F64 / 30.0, W_1500, &r, false);
     run(&c, &p, W_1500, 432.0, 1.5, &r);
-    report("step 1000->1500 rpm", &c, W_1500, 1000.0 * PI / 30.0, &r, false);
+    report("step 1000->1500 rpm", &c, W_1500, 1000.0 * MATH_PI_F64 / 30.0, &r, false);
     run(&c, &p, W_1500, 605.0, 1.0, &r);
     report("bus 432->605 V at 1500 rpm", &c, W_1500, W_1500, &r, false);
     run(&c, &p, -W_1500, 605.0, 3.0, &r);
@@ -225,7 +217,7 @@ static void current_scan(double f, double f_sl, double kp, double ki, double *ov
     plant_t p = {0};
     (void)induction_motor_init_f64(&p.motor, &induction_motor_params_15kw_delta, NULL,
                                    MOTOR_STEP);
-    induction_motor_set_speed_f64(&p.motor, (f - f_sl) * 2.0 * PI / 2.0, true);
+    induction_motor_set_speed_f64(&p.motor, (f - f_sl) * 2.0 * MATH_PI_F64 / 2.0, true);
     run_t r = {0};
     double i_max = 0.0;
     *t_settle = 0.0;

@@ -49,7 +49,7 @@ static inline double tdft_amp(const tdft *d) {
 
 /* Phase of X [deg]. */
 static inline double tdft_phase_deg(const tdft *d) {
-    return math_atan2_f64(d->im, d->re) * (180.0 / 3.14159265358979323846);
+    return math_atan2_f64(d->im, d->re) * MATH_RAD_TO_DEG_F64;
 }
 
 /* An angle [deg] wrapped into [-180, 180). */

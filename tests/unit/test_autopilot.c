@@ -6,11 +6,12 @@
  * checked in suite exec_paths.
  */
 #include "autopilot.h"
+#include "math/umath.h"
 #include "ut.h"
 
 void suite_autopilot(void);
 
-#define DEG (3.14159265358979323846 / 180.0)
+#define DEG (MATH_PI_F64 / 180.0)
 
 static void zero(double x[VESSEL_NSTATES]) {
     for (int i = 0; i < VESSEL_NSTATES; i++) {

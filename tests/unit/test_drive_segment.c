@@ -129,7 +129,7 @@ static bool start(const drive_config *c, run_log *g, bool contactor_open) {
     g->bat.g_s = contactor_open ? 0.0 : bc.g_s;
     g->bat.b_a = contactor_open ? 0.0 : bc.b_a;
     drive_start(&drv, &g->bat);
-    drive_speed_command(&drv, 1000.0 * 3.14159265358979323846 / 30.0);
+    drive_speed_command(&drv, 1000.0 * MATH_PI_F64 / 30.0);
     return true;
 }
 

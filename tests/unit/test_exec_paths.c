@@ -17,7 +17,7 @@ void suite_exec_paths(void);
 static scenario scn;
 static exec ex;
 
-#define DEG (3.14159265358979323846 / 180.0)
+#define DEG (MATH_PI_F64 / 180.0)
 #define MAX_RECS 12u
 
 /* The records of the last run: the first MAX_RECS of them. */
@@ -771,7 +771,7 @@ static void test_autopilot_commands(void) {
     UT_NEAR(recs[3].cmd[0], 10.0 * DEG, 0.0);
     UT_NEAR(recs[10].cmd[0], 10.0 * DEG, 0.0);
     UT_NEAR(recs[10].cmd[1], recs[5].cmd[1], 0.0);
-    UT_CHECK(!ex.ap.heading_on);
+    UT_CHECK(!ex.player.ap.heading_on);
 }
 
 void suite_exec_paths(void) {

@@ -16,7 +16,7 @@ static exec ex;
 
 /* Documented settling time of the speed step (docs/multirate.md). */
 #define SETTLE_LIMIT_S 1.0
-#define RPM_PER_RADPS (30.0 / 3.14159265358979323846)
+#define RPM_PER_RADPS (30.0 / MATH_PI_F64)
 
 typedef struct {
     double peak_rpm;

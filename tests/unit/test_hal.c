@@ -21,6 +21,13 @@ static void fast_tick(void) {
 
 static void medium_tick(void) { medium_count++; }
 
+/* Waits (bounded) until the fast tick has run n times since its count was reset. */
+static void wait_ticks(uint32_t n) {
+    for (uint32_t guard = 0; guard < 1000000u && fast_count < n; guard++) {
+        hal_wait_for_tick();
+    }
+}
+
 void suite_hal(void) {
     UT_TEST("ticks: a period the timer cannot make is refused");
     hal_ticks_config bad = {0u, fast_tick, medium_tick, NULL};
@@ -33,9 +40,7 @@ void suite_hal(void) {
     hal_ticks_config cfg = {100000u, fast_tick, medium_tick, NULL};
     uint32_t c0 = hal_cycles();
     UT_CHECK(hal_ticks_start(&cfg));
-    for (uint32_t guard = 0; guard < 1000000u && fast_count < 100u; guard++) {
-        hal_wait_for_tick();
-    }
+    wait_ticks(100u);
     hal_ticks_stop();
     uint32_t f = fast_count;
     uint32_t m = medium_count;
@@ -54,11 +59,31 @@ void suite_hal(void) {
     }
     UT_EQ_INT(fast_count, before);
 
-    UT_TEST("critical sections nest");
+    UT_TEST("critical sections nest: a tick that falls due inside two of them waits past "
+            "the inner exit and runs after the outer one; one exit too many leaves the next "
+            "section masking");
+    fast_count = 0u;
+    UT_CHECK(hal_ticks_start(&cfg));
+    wait_ticks(1u);
     hal_critical_enter();
     hal_critical_enter();
+    uint32_t held = fast_count;
+    hal_wait_for_tick(); /* a tick falls due; masked, it does not run */
     hal_critical_exit();
+    hal_wait_for_tick();
+    uint32_t inner = fast_count;
     hal_critical_exit();
-    hal_critical_exit(); /* one too many is harmless */
-    UT_CHECK(1);
+    wait_ticks(held + 1u);
+    UT_EQ_INT(inner, held);
+    UT_CHECK(fast_count > held);
+    hal_critical_exit(); /* one too many */
+    hal_critical_enter();
+    held = fast_count;
+    hal_wait_for_tick();
+    inner = fast_count;
+    hal_critical_exit();
+    wait_ticks(held + 1u);
+    hal_ticks_stop();
+    UT_EQ_INT(inner, held);
+    UT_CHECK(fast_count > held);
 }

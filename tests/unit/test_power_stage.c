@@ -32,7 +32,6 @@ void suite_power_stage(void);
 #define STEP_S 2.0e-6
 #define FRAME_NS 100000u  /* motor frame: the load current is held this long */
 #define STEPS_PER_FRAME 50u
-#define PI_D 3.14159265358979323846
 #define Q28 ((double)PS_Q28_ONE)
 
 static const char *twin_name(int fixed) { return fixed ? "fixed" : "float"; }
@@ -69,7 +68,7 @@ static cplx c_div(cplx a, cplx b) {
  * Z_s = R_L + jwL, Y_sh = jwC + 1 / (R_d + 1 / (jwC_d)); and i_L / u = Y_sh v_C / u.
  */
 static void filter_analytic(const power_stage_params *p, double f_hz, cplx *h_v, cplx *h_i) {
-    const double w = 2.0 * PI_D * f_hz;
+    const double w = 2.0 * MATH_PI_F64 * f_hz;
     const cplx one = c_make(1.0, 0.0);
     const cplx z_s = c_make(p->r_l_ohm, w * p->l_h);
     const cplx z_d = c_make(p->r_d_ohm, -1.0 / (w * p->c_d_f));
@@ -93,7 +92,7 @@ static void filter_measure(int fixed, double f_hz, uint32_t settle, uint32_t n, 
     ps_phase_q xq = {0, 0, 0, 0};
     ps_phase_f32 xf = {0.0f, 0.0f, 0.0f, 0.0f};
     const double u_amp = 300.0;
-    const double wt = 2.0 * PI_D * f_hz * STEP_S;
+    const double wt = 2.0 * MATH_PI_F64 * f_hz * STEP_S;
     const double c1 = math_cos_f64(wt);
     const double s1 = math_sin_f64(wt);
     double ck = 1.0; /* cos(w t_k), sin(w t_k) by rotation */
@@ -144,7 +143,7 @@ static void filter_measure(int fixed, double f_hz, uint32_t settle, uint32_t n, 
 static void compare_response(cplx meas, cplx ref, double *mag_err, double *ph_err_deg) {
     const cplx r = c_div(meas, ref);
     *mag_err = math_sqrt_f64(r.re * r.re + r.im * r.im) - 1.0;
-    *ph_err_deg = math_atan2_f64(r.im, r.re) * (180.0 / PI_D);
+    *ph_err_deg = math_atan2_f64(r.im, r.re) * (180.0 / MATH_PI_F64);
 }
 
 static void test_filter_response(int fixed) {
@@ -459,7 +458,7 @@ static void trun_load(trun *r) {
 static void trun_load_prescribed(trun *r, double t_s, double amp) {
     unsigned x;
     for (x = 0u; x < 3u; x++) {
-        const double th = 2.0 * PI_D * (r->cfg.f_hz * t_s - (double)x / 3.0 - 1.0 / 12.0);
+        const double th = 2.0 * MATH_PI_F64 * (r->cfg.f_hz * t_s - (double)x / 3.0 - 1.0 / 12.0);
         r->st.i_m[x] = amp * math_sin_f64(th);
     }
 }
@@ -919,7 +918,7 @@ static void rt_duties(pwm_rt *rt, int substep, int32_t duty[3]) {
 }
 
 static void test_fused_step(int fixed, int substep, double amp_a, uint32_t steps) {
-    static const pwm_params sampled = {5000.0, PWM_EDGES_SAMPLED, 0u, 0u};
+    const pwm_params sampled = pwm_params_sampled;
     const uint32_t inc = wt_phase_inc_q16(50 * 65536, STEP_NS);
     uint32_t k;
     int same = 1;
@@ -935,7 +934,7 @@ static void test_fused_step(int fixed, int substep, double amp_a, uint32_t steps
         sb = sa;
         for (k = 0u; k < steps; k++) {
             int32_t st[3];
-            double w = 2.0 * PI_D * 50.0 * STEP_S * (double)k;
+            double w = 2.0 * MATH_PI_F64 * 50.0 * STEP_S * (double)k;
             if (k % 50u == 0u) {
                 pwm_rt_ramp ramp;
                 pwm_rt_ramp_q(&ramp, 29491, ref_ph, inc, 50u);
@@ -943,7 +942,7 @@ static void test_fused_step(int fixed, int substep, double amp_a, uint32_t steps
                 ref_ph += 50u * inc;
             }
             in.i_motor[0] = fp_from_f64_q15(amp_a / 256.0 * math_sin_f64(w));
-            in.i_motor[1] = fp_from_f64_q15(amp_a / 256.0 * math_sin_f64(w - 2.0 * PI_D / 3.0));
+            in.i_motor[1] = fp_from_f64_q15(amp_a / 256.0 * math_sin_f64(w - 2.0 * MATH_PI_F64 / 3.0));
             rt_duties(&rt, substep, st);
             for (unsigned x = 0u; x < 3u; x++) {
                 in.duty[x] = st[x];
@@ -967,7 +966,7 @@ static void test_fused_step(int fixed, int substep, double amp_a, uint32_t steps
         sb = sa;
         for (k = 0u; k < steps; k++) {
             int32_t st[3];
-            float w = (float)(2.0 * PI_D * 50.0 * STEP_S * (double)k);
+            float w = (float)(2.0 * MATH_PI_F64 * 50.0 * STEP_S * (double)k);
             if (k % 50u == 0u) {
                 pwm_rt_ramp ramp;
                 pwm_rt_ramp_f32(&ramp, 0.9f, ref_ph, inc, 50u);

@@ -288,7 +288,7 @@ static void test_averaged_duties(int fixed) {
     tpwm_command(&t, 0.75, wt_phase_inc_q16((int32_t)(51.3 * 65536.0 + 0.5), 100000u));
     for (k = 0u; k < 500u; k++) {
         const uint32_t inc100 = t.fixed ? t.q.inc_s : t.f.inc_s;
-        const double mid = 6.283185307179586 * ((double)(ph + inc100 / 2u) / 4294967296.0);
+        const double mid = MATH_TWO_PI_F64 * ((double)(ph + inc100 / 2u) / 4294967296.0);
         tpwm_step(&t, 1);
         for (x = 0u; x < 3u; x++) {
             const double r = 0.75 * math_sin_f64(mid - 2.0943951023931955 * (double)x);
@@ -363,7 +363,7 @@ static void test_commands(void) {
     UT_EQ_INT(pwm_init_q(&q, &pwm_params_default, 50u), PWM_ERR_STEP);
     bad.carrier_hz = 100000.0;
     UT_EQ_INT(pwm_init_q(&q, &bad, STEP_NS), PWM_ERR_CARRIER);
-    bad.carrier_hz = 5000.0;
+    bad.carrier_hz = pwm_params_default.carrier_hz;
     UT_EQ_INT(pwm_init_f32(&f, &bad, 40000u), PWM_ERR_CARRIER); /* 5 steps per period */
     bad.edges = PWM_AVERAGED;
     UT_EQ_INT(pwm_init_f32(&f, &bad, 40000u), PWM_OK);
@@ -400,7 +400,7 @@ static void test_rt_carrier(void) {
  * carrier, and the fundamentals of u_a agree within 0.2 %.
  */
 static void test_rt_against_exact(int fixed) {
-    static const pwm_params sampled = {5000.0, PWM_EDGES_SAMPLED, 0u, 0u};
+    const pwm_params sampled = pwm_params_sampled;
     const uint32_t inc = inc_hz(50.0);
     const uint32_t n = 50u;
     const double m = 0.9;
@@ -426,7 +426,7 @@ static void test_rt_against_exact(int fixed) {
             pwm_rt_apply(&rt, &ramp);
         }
         /* The reference of leg a now against m sin at this step's phase. */
-        double exact = m * math_sin_f64(6.283185307179586 * (double)(ref_ph + (k % n) * inc) /
+        double exact = m * math_sin_f64(MATH_TWO_PI_F64 * (double)(ref_ph + (k % n) * inc) /
                                         4294967296.0);
         double dev = (double)rt.r[0] / PWM_RT_ONE - exact;
         chord_worst = (dev < 0 ? -dev : dev) > chord_worst ? (dev < 0 ? -dev : dev) : chord_worst;
@@ -442,7 +442,7 @@ static void test_rt_against_exact(int fixed) {
         tdft_add(&d_rt, (double)(2 * st[0] - st[1] - st[2]) * VDC_V / 3.0);
         tdft_add(&d_ex, t.u[0]);
     }
-    double wnt = 6.283185307179586 * 50.0 * 1e-4;
+    double wnt = MATH_TWO_PI_F64 * 50.0 * 1e-4;
     double amp_rt = tdft_amp(&d_rt);
     double amp_ex = tdft_amp(&d_ex);
     ut_info("%s real-time modulator, m 0.9, 50 Hz: chord deviation %.2e (bound %.2e), states "
@@ -602,7 +602,7 @@ static void test_rt_duty_exact(void) {
 /* The set-up refuses what pwm.h refuses, and the interpolated edge mode. */
 static void test_rt_setup(void) {
     pwm_rt rt;
-    pwm_params p = {5000.0, PWM_EDGES_SAMPLED, 0u, 0u};
+    pwm_params p = pwm_params_sampled;
     UT_EQ_INT(pwm_rt_init(NULL, &p, STEP_NS), PWM_ERR_NULL);
     UT_EQ_INT(pwm_rt_init(&rt, NULL, STEP_NS), PWM_ERR_NULL);
     p.edges = PWM_EDGES_INTERPOLATED;

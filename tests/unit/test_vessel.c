@@ -605,10 +605,10 @@ static void test_counters_and_pitch(void) {
  * figure does not come from the model's own formula.
  */
 static double float_depth(double frac, double r) {
-    double lo = 0.0, hi = 2.0 * 3.14159265358979323846;
+    double lo = 0.0, hi = 2.0 * MATH_PI_F64;
     for (int k = 0; k < 80; k++) {
         const double a = 0.5 * (lo + hi);
-        if ((a - math_sin_f64(a)) / (2.0 * 3.14159265358979323846) < frac) {
+        if ((a - math_sin_f64(a)) / (2.0 * MATH_PI_F64) < frac) {
             lo = a;
         } else {
             hi = a;
@@ -721,7 +721,7 @@ static void test_free_surface(void) {
     x[VESSEL_Z_M] = z_eq;
     run(&vm_a, x, &up, 300);
     UT_CHECK(x[VESSEL_THETA_RAD] < -0.005);
-    ut_info("trim after 30 s: %.2f deg", x[VESSEL_THETA_RAD] * 57.29577951308232);
+    ut_info("trim after 30 s: %.2f deg", x[VESSEL_THETA_RAD] * MATH_RAD_TO_DEG_F64);
 }
 
 static uint64_t state_hash(const double x[VESSEL_NSTATES]) {

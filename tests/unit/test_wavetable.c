@@ -20,6 +20,7 @@
  * and the 120-degree set.
  */
 #include "fixedpoint/wavetable.h"
+#include "math/umath.h"
 #include "ut.h"
 
 void suite_wavetable(void);
@@ -32,7 +33,7 @@ void suite_wavetable(void);
 
 /* ---- A self-contained double sine (the reference of this file) -------- */
 
-static const double ref_two_pi = 6.283185307179586476925286766559;
+static const double ref_two_pi = MATH_TWO_PI_F64;
 
 /* sin x for 0 <= x <= pi/4: Taylor series to x^19 (next term < 1e-19). */
 static double ref_sin_small(double x) {

@@ -49,7 +49,6 @@ void vessel_kinematics(const vessel_trig *t, const double x[VESSEL_NSTATES], dou
 
 /* Stations of the buoyancy integral: midpoints of equal slices of the hull. */
 #define VESSEL_HS_STATIONS 10
-#define VESSEL_PI 3.14159265358979323846
 
 /*
  * asin(a) for 0 <= a <= 1, given s1 = sqrt(1 - a): Abramowitz and Stegun
@@ -64,7 +63,7 @@ static double vessel_asin_pos(double a, double s1) {
     for (int k = 6; k >= 0; k--) {
         p = p * a + c[k];
     }
-    return 0.5 * VESSEL_PI - s1 * p;
+    return 0.5 * MATH_PI_F64 - s1 * p;
 }
 
 /*
@@ -103,14 +102,14 @@ static bool vessel_submerged(const vessel_model *m, const vessel_trig *t,
             const double ta = math_fabs_f64(tk);
             const double s1 = math_sqrt_f64(1.0 - ta);
             const double c = s1 * math_sqrt_f64(1.0 + ta);
-            f = 0.5 + (math_copysign_f64(vessel_asin_pos(ta, s1), tk) + tk * c) / VESSEL_PI;
+            f = 0.5 + (math_copysign_f64(vessel_asin_pos(ta, s1), tk) + tk * c) / MATH_PI_F64;
             sm += c * c * c;
         }
         sf += f;
         sfx += f * xk;
     }
     const double per = *b / (double)VESSEL_HS_STATIONS;
-    const double arm = sm * (2.0 * pa->hull_radius_m / (3.0 * VESSEL_PI));
+    const double arm = sm * (2.0 * pa->hull_radius_m / (3.0 * MATH_PI_F64));
     *b = per * sf;
     rb[0] = pa->r_b_m[0] * *b + per * sfx;
     rb[1] = pa->r_b_m[1] * *b + per * arm * t->sphi;

@@ -9,7 +9,6 @@
 #include "math/umath.h"
 #include "models/drive/drive_units.h"
 
-#define DC_TWO_PI 6.283185307179586
 
 /* True when every value is finite and strictly positive. */
 static bool dc_all_positive(const double *v, size_t n) {
@@ -82,12 +81,12 @@ drive_control_status drive_control_design_f64(drive_control_design *d,
         d->ls_h = p->lls_h + p->lm_h;
         d->sigma_ls_h = d->ls_h - p->lm_h * p->lm_h / lr;
         d->tau_r_s = lr / p->rr_ohm;
-        d->kq_a_per_hz = DC_TWO_PI * d->tau_r_s * p->i_mag_a;
+        d->kq_a_per_hz = MATH_TWO_PI_F64 * d->tau_r_s * p->i_mag_a;
         double psi_r = p->lm_h * p->i_mag_a;
-        d->kt_nm_per_hz = 1.5 * (double)p->pole_pairs * psi_r * psi_r * DC_TWO_PI / p->rr_ohm;
+        d->kt_nm_per_hz = 1.5 * (double)p->pole_pairs * psi_r * psi_r * MATH_TWO_PI_F64 / p->rr_ohm;
         double iq_max = math_sqrt_f64(p->i_max_a * p->i_max_a - p->i_mag_a * p->i_mag_a);
         d->slip_lim_hz = math_min_f64(p->slip_max_hz, iq_max / d->kq_a_per_hz);
-        d->fr_hz_per_radps = (double)p->pole_pairs / DC_TWO_PI;
+        d->fr_hz_per_radps = (double)p->pole_pairs / MATH_TWO_PI_F64;
         d->pwm_step_ns = pwm_ns;
     }
     return DRIVE_CONTROL_OK;

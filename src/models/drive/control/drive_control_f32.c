@@ -10,7 +10,6 @@
 #include "fixedpoint/wavetable.h"
 #include "math/umath.h"
 
-#define DC_TWO_PI 6.283185307179586
 
 drive_control_status drive_control_init_f32(drive_control_f32 *c,
                                             const drive_control_params *p) {
@@ -28,8 +27,8 @@ drive_control_status drive_control_init_f32(drive_control_f32 *c,
     c->fr_per_w = (float)d.fr_hz_per_radps;
     c->kq = (float)d.kq_a_per_hz;
     c->rs = (float)p->rs_ohm;
-    c->w_sls = (float)(DC_TWO_PI * d.sigma_ls_h);
-    c->w_ls = (float)(DC_TWO_PI * d.ls_h);
+    c->w_sls = (float)(MATH_TWO_PI_F64 * d.sigma_ls_h);
+    c->w_ls = (float)(MATH_TWO_PI_F64 * d.ls_h);
     c->ff_gain = (float)p->ff_gain;
     c->kp_i = (float)p->kp_current_v_per_a;
     c->ki_i_t = (float)(p->ki_current_v_per_as * p->step_s);

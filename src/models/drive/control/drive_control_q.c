@@ -11,7 +11,6 @@
 #include "math/umath.h"
 #include "models/drive/drive_units.h"
 
-#define DC_TWO_PI 6.283185307179586
 #define DC_MANT_LIMIT 1073741824.0 /* 2^30: a mantissa keeps 30 significant bits */
 
 /* ---- Constants ------------------------------------------------------------ */
@@ -89,8 +88,8 @@ static bool dc_make_constants(drive_control_q *c, const drive_control_params *p)
               dc_gain_make(&c->k_fr, c->d.fr_hz_per_radps * sw) &&
               dc_gain_make(&c->k_q, c->d.kq_a_per_hz * DRIVE_BASE_FREQ_HZ / DRIVE_BASE_CURRENT_A) &&
               dc_gain_make(&c->k_rs, p->rs_ohm * vi) &&
-              dc_gain_make(&c->k_sls, DC_TWO_PI * c->d.sigma_ls_h * fi) &&
-              dc_gain_make(&c->k_ls, DC_TWO_PI * c->d.ls_h * fi) &&
+              dc_gain_make(&c->k_sls, MATH_TWO_PI_F64 * c->d.sigma_ls_h * fi) &&
+              dc_gain_make(&c->k_ls, MATH_TWO_PI_F64 * c->d.ls_h * fi) &&
               dc_gain_make(&c->k_ff, p->ff_gain) &&
               dc_gain_make(&c->kp_i, p->kp_current_v_per_a * vi) &&
               dc_gain_make(&c->ki_i, p->ki_current_v_per_as * t * vi) &&

@@ -7,11 +7,12 @@
  */
 #include <stddef.h>
 
+#include "math/umath.h"
 #include "models/drive/motor/induction_motor.h"
 
 #define IM_INV_SQRT3_F32 0.577350269f    /* 1 / sqrt(3) */
 #define IM_HALF_SQRT3_F32 0.866025404f   /* sqrt(3) / 2 */
-#define IM_RPM_PER_RADPS_F32 9.54929658f /* 30 / pi */
+#define IM_RPM_PER_RADPS_F32 MATH_RAD_TO_RPM_F32
 
 /* e^(j phi) - 1 = c1 + j s, Taylor series as in the double twin. */
 static void im_rotation_f32(float phi, float *c1, float *s) {

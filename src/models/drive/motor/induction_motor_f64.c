@@ -6,6 +6,7 @@
  */
 #include <stddef.h>
 
+#include "math/umath.h"
 #include "models/drive/motor/induction_motor.h"
 
 #define IM_INV_SQRT3_F64 0.57735026918962576451  /* 1 / sqrt(3) */
@@ -121,7 +122,7 @@ void induction_motor_step_f64(induction_motor_f64 *m, const induction_motor_in_f
     out->te_nm = m->te;
     out->t_load_nm = m->t_load;
     out->w_radps = m->w;
-    out->n_rpm = m->w * (30.0 / 3.14159265358979323846);
+    out->n_rpm = m->w * (30.0 / MATH_PI_F64);
     out->psi_s_alpha_wb = m->psi_s[0];
     out->psi_s_beta_wb = m->psi_s[1];
 }

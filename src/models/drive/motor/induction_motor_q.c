@@ -5,6 +5,7 @@
  */
 #include <stddef.h>
 
+#include "math/umath.h"
 #include "models/drive/drive_units.h"
 #include "models/drive/motor/induction_motor.h"
 #include "models/drive/motor/induction_motor_q_internal.h"
@@ -50,7 +51,7 @@ static bool im_row_from_f64(induction_motor_row_q *r, double v0, double v1, doub
 #define IM_Q_I (DRIVE_BASE_CURRENT_A / 2147483648.0)        /* [A] */
 #define IM_Q_W (DRIVE_BASE_SPEED_RADPS / 2147483648.0)      /* [rad/s] */
 #define IM_Q_T (DRIVE_BASE_TORQUE_NM / 2147483648.0)        /* [N m] */
-#define IM_RPM_PER_RADPS 9.5492965855137201461              /* 30 / pi */
+#define IM_RPM_PER_RADPS MATH_RAD_TO_RPM_F64
 
 /*
  * Each constant expressed as (output LSB per operand LSB). The cross

@@ -94,6 +94,9 @@ typedef enum {
 /* Default parameters: 5 kHz carrier, interpolated edges, both phases at 0. */
 extern const pwm_params pwm_params_default;
 
+/* The same with sampled edges, as the real-time step (pwm_rt.h) takes them. */
+extern const pwm_params pwm_params_sampled;
+
 /* ---- Fixed-point twin ---------------------------------------------------- */
 
 typedef struct {

@@ -5,9 +5,18 @@
  */
 #include "models/drive/pwm/pwm.h"
 
+#define PWM_CARRIER_HZ 5000.0 /* [Hz] the paper's carrier, the drive's one home for it */
+
 const pwm_params pwm_params_default = {
-    .carrier_hz = 5000.0,
+    .carrier_hz = PWM_CARRIER_HZ,
     .edges = PWM_EDGES_INTERPOLATED,
+    .carrier_phase0 = 0u,
+    .ref_phase0 = 0u,
+};
+
+const pwm_params pwm_params_sampled = {
+    .carrier_hz = PWM_CARRIER_HZ,
+    .edges = PWM_EDGES_SAMPLED,
     .carrier_phase0 = 0u,
     .ref_phase0 = 0u,
 };
