@@ -42,7 +42,7 @@ TEST_C := tests/harness/ut.c tests/harness/runner.c $(sort $(wildcard tests/unit
 SUITES := $(patsubst tests/unit/test_%.c,%,$(sort $(wildcard tests/unit/test_*.c)))
 LINUX_PORT_C := $(sort $(wildcard ports/linux/hal_*.c))
 UUVSIM_C := ports/linux/uuvsim.c ports/linux/cli.c ports/linux/csv_out.c ports/linux/derivs.c \
-            ports/linux/view.c ports/linux/live.c ports/linux/out_file.c
+            ports/linux/view.c ports/linux/live.c ports/linux/out_file.c ports/linux/paramset.c ports/linux/sweep.c
 CORTEXM_PORT_C := ports/cortexm/startup.c ports/cortexm/hal_cortexm.c \
                   ports/cortexm/semihost.c ports/cortexm/libc_min.c
 
@@ -174,7 +174,13 @@ FW_FAST_C := src/drive_segment_fixed.c src/drive_segment_float.c src/executive.c
 FW_FAST_FLAGS := -fno-schedule-insns -fno-tree-pre -fno-optimize-sibling-calls
 FW_SCENARIO_EVENTS ?= 64
 FW_STACK_BYTES ?= 3328
-FW_SIM_C := ports/cortexm/fw_main.c
+# The firmware simulation's parameter set: with PARAMS=FILE (make firmware
+# PARAMS=FILE) the desk program writes FILE's set as constant data
+# ($(BUILD)/gen/fw_params.c, uuvsim params --emit-c) and every image links
+# it instead of the default set. The shipped sets also build as
+# uuvsim-NAME.elf beside each image (params/NAME.params), for make test.
+FW_PARAMS_C := $(if $(PARAMS),$(BUILD)/gen/fw_params.c,ports/cortexm/fw_params_default.c)
+FW_SIM_C := ports/cortexm/fw_main.c $(FW_PARAMS_C)
 # Code off the tick paths (the background's vessel and battery, start-up,
 # parsing, formatting) is compiled for size: the Cortex-M3's image must
 # fit in 64 KiB. The results do not change (no reassociation, no
@@ -261,7 +267,14 @@ $$($(1)-$(2)_DIR)/unit_tests_part%.elf: $$($(1)-$(2)_SRC_O) $$($(1)-$(2)_DIR)/ob
 	        $$(filter %.o,$$^)) \
 	    $$(foreach s,$$(TEST_PART$$*),$$($(1)-$(2)_DIR)/obj/tests/unit/test_$$(s).o) -lgcc
 
-$$($(1)-$(2)_DIR)/uuvsim.elf: $$($(1)-$(2)_SRC_O) $$($(1)-$(2)_SIM_O) ldscripts/$(1).ld
+$$($(1)-$(2)_DIR)/uuvsim.elf: $$($(1)-$(2)_SRC_O) $$($(1)-$(2)_SIM_O) ldscripts/$(1).ld \
+        $(BUILD)/gen/fw_params.name
+	$(ARM_CC) $$($(1)-$(2)_LDFLAGS) -Wl,--defsym=STACK_SIZE=$(FW_STACK_BYTES) \
+	    -Wl,-Map=$$(@:.elf=.map) -o $$@ $$(filter %.o,$$^) -lgcc
+
+# The image with a shipped set: params/NAME.params as uuvsim-NAME.elf.
+$$($(1)-$(2)_DIR)/uuvsim-%.elf: $$($(1)-$(2)_SRC_O) $$($(1)-$(2)_DIR)/obj/ports/cortexm/fw_main.o \
+        $$($(1)-$(2)_DIR)/obj/$(BUILD)/gen/params/%.o ldscripts/$(1).ld
 	$(ARM_CC) $$($(1)-$(2)_LDFLAGS) -Wl,--defsym=STACK_SIZE=$(FW_STACK_BYTES) \
 	    -Wl,-Map=$$(@:.elf=.map) -o $$@ $$(filter %.o,$$^) -lgcc
 
@@ -289,6 +302,27 @@ $(eval $(call fw_variant,mps2-an500,float,$(CPU_M7),1,ports/cortexm/board_mps2.c
 $(eval $(call fw_variant,netduinoplus2,fixed,$(CPU_M4F),1,ports/cortexm/board_stm32f405.c,))
 $(eval $(call fw_variant,netduinoplus2,float,$(CPU_M4F),1,ports/cortexm/board_stm32f405.c,))
 $(eval $(call fw_variant,lm3s6965evb,fixed,$(CPU_M3),0,ports/cortexm/board_lm3s6965.c,1 2,-Os))
+
+# The set the firmware images link (see FW_PARAMS_C): written by the fixed
+# desk program, which refuses a set the fixed build's bases cannot hold;
+# rewritten only when it changes. fw_params.name records which set the
+# images hold, so that changing PARAMS (or dropping it) relinks them.
+$(BUILD)/gen/fw_params.c: $(PARAMS) $(BUILD)/linux-fixed/uuvsim FORCE
+	@mkdir -p $(@D)
+	$(BUILD)/linux-fixed/uuvsim params --params $(PARAMS) --emit-c $@.new
+	@cmp -s $@.new $@ || mv $@.new $@
+	@rm -f $@.new
+
+.PRECIOUS: $(BUILD)/gen/params/%.c
+$(BUILD)/gen/params/%.c: params/%.params $(BUILD)/linux-fixed/uuvsim
+	@mkdir -p $(@D)
+	$(BUILD)/linux-fixed/uuvsim params --params $< --emit-c $@
+
+$(BUILD)/gen/fw_params.name: FORCE
+	@mkdir -p $(@D)
+	@printf '%s\n' '$(or $(PARAMS),default)' > $@.tmp
+	@cmp -s $@.tmp $@ || mv $@.tmp $@
+	@rm -f $@.tmp
 
 # ---- Host tools (may use libc and libm) -----------------------------------
 

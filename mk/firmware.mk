@@ -62,7 +62,8 @@ qemu-bench: $(FW_SIMS) $(FW_HOST_TOOLS) $(BUILD)/linux-fixed/uuvsim $(BUILD)/lin
 
 # ---- make test ------------------------------------------------------------
 
-test-run: $(FW_SIMS) $(FW_HOST_TOOLS)
+test-run: $(FW_SIMS) $(FW_HOST_TOOLS) $(BUILD)/cortexm-mps2-an386-fixed/uuvsim-motor4kw.elf \
+    $(BUILD)/cortexm-mps2-an386-float/uuvsim-motor4kw.elf
 test-run: export FW_DECODE := $(FW_DECODE)
 test-run: export FW_PLUGIN := $(FW_PLUGIN)
 test-run: export FW_STACK := $(FW_STACK)

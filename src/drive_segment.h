@@ -103,6 +103,11 @@ typedef struct {
     uint32_t medium_per_slow;    /* motor frames per slow frame (the speed filter's time constant) */
     bool energy_audit;        /* count the filter's and the motor's losses (general fast path) */
     double v_dc0_v;           /* [V] initial DC-link voltage */
+    /* The models' parameters: a parameter set's (params.h), none NULL. */
+    const power_stage_params *stage;      /* DC link and LC filter */
+    const pwm_params *pwm;                /* carrier and phases; the edge mode is the inverter's */
+    const induction_motor_params *motor;
+    const drive_control_params *control;  /* its step_s and pwm_step_s come from the frames */
 } drive_config;
 
 /* The battery's companion i = G v - b (battery.h convention), in SI. */

@@ -48,15 +48,19 @@ drive_status drive_init(drive_segment *d, const drive_config *cfg, const propell
     }
     *d = (drive_segment){0};
     d->cfg = *cfg;
-    d->ps_params = power_stage_params_default;
+    d->ps_params = *cfg->stage;
+    /* Edges located inside the step (the general modulator), or switch
+     * states held per step (the real-time one). */
+    pwm_params pwm_p = *cfg->pwm;
+    pwm_p.edges = PWM_EDGES_INTERPOLATED;
     d->fault.dc_cap_frac = 1.0;
     d->fault.load_factor = 1.0;
     double fast_s = 1e-9 * (double)cfg->fast_ns;
     double medium_s = fast_s * (double)cfg->fast_per_medium;
     uint32_t mod_ns = cfg->fast_ns;
-    induction_motor_params mp = induction_motor_params_15kw_delta;
+    induction_motor_params mp = *cfg->motor;
     if (averaged) {
-        if (inverter_qs_init_q(&d->qs, &pwm_params_default, cfg->fast_ns, cfg->v_dc0_v) !=
+        if (inverter_qs_init_q(&d->qs, &pwm_p, cfg->fast_ns, cfg->v_dc0_v) !=
             INVERTER_AVG_OK) {
             return DRIVE_ERR_MODEL;
         }
@@ -66,8 +70,11 @@ drive_status drive_init(drive_segment *d, const drive_config *cfg, const propell
         mp.rs_ohm += d->ps_params.r_l_ohm;
         mp.lls_h += d->ps_params.l_h;
     } else {
-        if (pwm_init_q(&d->pwm, &pwm_params_default, cfg->fast_ns) != PWM_OK ||
-            pwm_rt_init(&d->rt, &pwm_params_sampled, cfg->fast_ns) != PWM_OK ||
+        if (pwm_init_q(&d->pwm, &pwm_p, cfg->fast_ns) != PWM_OK) {
+            return DRIVE_ERR_MODEL;
+        }
+        pwm_p.edges = PWM_EDGES_SAMPLED;
+        if (pwm_rt_init(&d->rt, &pwm_p, cfg->fast_ns) != PWM_OK ||
             pwm_rt_dead_time(&d->rt, cfg->dead_time_ns, cfg->fast_ns) != PWM_OK ||
             power_stage_init_q(&d->ps, &d->ps_params, cfg->fast_ns,
                                cfg->v_dc0_v) != PS_OK) {
@@ -89,7 +96,7 @@ drive_status drive_init(drive_segment *d, const drive_config *cfg, const propell
     d->k32 = (k_l < 0.5 && k_l > 2.5e-4) ? (int32_t)(k_l * 4294967296.0 + 0.5) : 0;
     /* The EMF's current drop per Q31 (motor) current change: 1 / (8 k_l N). */
     factor_split(1.0 / (8.0 * k_l * (double)cfg->fast_per_medium), &d->e_mant, &d->e_shift);
-    d->ctl_params = drive_control_params_default;
+    d->ctl_params = *cfg->control;
     d->ctl_params.step_s = medium_s * (double)cfg->medium_per_control;
     d->ctl_params.pwm_step_s = 1e-9 * (double)mod_ns;
     if (drive_control_init_q(&d->ctl, &d->ctl_params) != DRIVE_CONTROL_OK) {
@@ -690,7 +697,7 @@ void drive_fault_request(drive_segment *d, const drive_faults *f) {
     power_stage_q scratch;
     power_stage_params faulted = d->ps_params;
     d->fault_next = *f;
-    faulted.c_dc_f = power_stage_params_default.c_dc_f * f->dc_cap_frac;
+    faulted.c_dc_f = d->cfg.stage->c_dc_f * f->dc_cap_frac;
     if (d->stage == NULL) {
         /* The averaged layer: the bus constants fold the capacitance in;
          * they take effect at the next slow boundary, with the fault. */

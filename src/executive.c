@@ -126,7 +126,7 @@ static exec_status init_frames(exec *e, const exec_config *cfg, double duration)
 
 static exec_status init_drive(exec *e) {
     const exec_config *c = &e->cfg;
-    e->bat_params = battery_params_uuv;
+    e->bat_params = *c->params->battery;
     e->bat_params.frame_s = e->slow_s;
     if (battery_init(&e->bat, &e->bat_params, c->soc0) != BATTERY_OK) {
         return EXEC_ERR_MODEL;
@@ -145,6 +145,10 @@ static exec_status init_drive(exec *e) {
     dc.medium_per_slow = c->medium_per_slow;
     dc.v_dc0_v = battery_voltage_f64(&e->bat, 0.0);
     dc.energy_audit = c->energy_audit;
+    dc.stage = c->params->stage;
+    dc.pwm = c->params->pwm;
+    dc.motor = c->params->motor;
+    dc.control = c->params->control;
     if (drive_init(&e->drive, &dc, &e->prop) != DRIVE_OK) {
         return EXEC_ERR_MODEL;
     }
@@ -205,6 +209,9 @@ static void make_report(exec *e);
 exec_status exec_init(exec *e, const exec_config *cfg, const scenario *scn) {
     *e = (exec){0};
     e->cfg = *cfg;
+    if (cfg->params == NULL) {
+        e->cfg.params = &uuv_params_default;
+    }
     e->trip_t_s = -1.0;
     double duration = (cfg->duration_s > 0.0) ? cfg->duration_s : scn->duration_s;
     if (!(cfg->soc0 > 0.0 && cfg->soc0 <= 1.0) || cfg->plant > EXEC_PLANT_FULL) {
@@ -214,11 +221,14 @@ exec_status exec_init(exec *e, const exec_config *cfg, const scenario *scn) {
     if (st != EXEC_OK) {
         return st;
     }
-    if (propeller_init(&e->prop, &propeller_params_default) != PROPELLER_OK) {
+    const uuv_params *set = e->cfg.params;
+    if (propeller_init(&e->prop, set->propeller) != PROPELLER_OK) {
         return EXEC_ERR_MODEL;
     }
     vessel_config vc;
     vessel_config_default(&vc);
+    vc.params = set->vessel;
+    vc.propeller = set->propeller;
     vc.propulsion = cfg->propulsion;
     vc.shaft = (cfg->plant == EXEC_PLANT_FULL) ? VESSEL_SHAFT_INPUT : VESSEL_SHAFT_LAG;
     vc.free_surface = !cfg->deep_water;
@@ -231,6 +241,7 @@ exec_status exec_init(exec *e, const exec_config *cfg, const scenario *scn) {
     }
     player_init(&e->player, scn, e->slow_s);
     protection_init(&e->prot, e->slow_s);
+    e->player.ap.p = *e->cfg.params->autopilot;
     manoeuvre_init(&e->man, scn->zigzag.enabled, scn->zigzag.heading_rad, scn->zigzag.start_s);
     apply_commands(e, 0.0);
     if (cfg->plant == EXEC_PLANT_FULL) {

@@ -55,6 +55,7 @@
 #include "models/propeller/propeller.h"
 #include "models/vessel/vessel.h"
 #include "protection.h"
+#include "params.h"
 #include "scenario.h"
 #include "scenario_player.h"
 
@@ -82,6 +83,7 @@ typedef struct {
     uint32_t fast_per_medium;    /* 50 */
     uint32_t medium_per_control; /* 8 */
     uint32_t medium_per_slow;    /* 1000 */
+    const uuv_params *params;    /* the models' parameters; NULL: uuv_params_default */
 } exec_config;
 
 /* One telemetry record: the state at a reported slow boundary. */

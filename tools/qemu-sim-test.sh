@@ -23,6 +23,8 @@
 #     (FW_FAST_BUDGET_FIXED, FW_FAST_BUDGET_FLOAT).
 # With FW_RT_CHECK=no the last two are reported (met or NOT MET) without
 # failing, for while the fast path is still too slow.
+# FW_TEST_DESK_ARGS adds options to the desk's runs: --params FILE for an
+# image built with that set (uuvsim-NAME.elf, make firmware PARAMS=FILE).
 # Prints one line per check and "N passed, N failed".
 set -u
 machine=$1; num=$2; elf=$3; desk=$4; out=$5
@@ -62,8 +64,12 @@ sum=$dir/summary.json
 echo "  run   $variant: $duration s of $scenario; at shift $shift_n: $fw_overruns_first" \
      "overrun(s) (stopped at $fw_stopped_first s); passes at shift $fw_pass_shift"
 
-"$desk" --quiet --scenario "$scenario" --duration "$duration" --csv "$out/desk.csv"
-"$desk" --json --scenario "$scenario" --duration "$duration" >"$out/desk.json"
+# shellcheck disable=SC2086 # the desk options are a list of words
+"$desk" ${FW_TEST_DESK_ARGS:-} --quiet --scenario "$scenario" --duration "$duration" \
+    --csv "$out/desk.csv"
+# shellcheck disable=SC2086
+"$desk" ${FW_TEST_DESK_ARGS:-} --json --scenario "$scenario" --duration "$duration" \
+    >"$out/desk.json"
 cmp -s "$out/desk.csv" "$dir/telemetry.csv"
 check $? "$variant: decoded telemetry CSV byte-identical to the desk simulator's ($num build)"
 same=0

@@ -73,6 +73,8 @@ for v in linux-fixed linux-float; do
     run "host $v output safety" pass sh tests/host/test_outputs.sh "$BUILD/$v/uuvsim"
 done
 for v in linux-fixed linux-float; do
+    run "host $v parameter sets" pass sh tests/host/test_params.sh "$BUILD/$v/uuvsim"
+    run "host $v sweeps, resume, shards" pass sh tests/host/test_sweep.sh "$BUILD/$v/uuvsim"
     run "host $v fault injection" pass sh tests/host/test_faults.sh "$BUILD/$v/uuvsim"
     run "host $v soak, 600 s (make soak: 3600 s)" pass sh tests/host/test_soak.sh \
         "$BUILD/$v/uuvsim" 600
@@ -118,6 +120,16 @@ for v in $FW_VARIANTS; do
     num=${v##*-}
     run "qemu $v simulation" pass sh tools/qemu-sim-test.sh "$machine" "$num" \
         "$BUILD/cortexm-$v/uuvsim.elf" "$BUILD/linux-$num/uuvsim" "$BUILD/qemu-test/$v"
+done
+# A shipped non-default set compiled into the image (uuvsim-motor4kw.elf,
+# as make firmware PARAMS=params/motor4kw.params builds it), against the
+# desk with --params.
+for num in fixed float; do
+    run "qemu mps2-an386-$num simulation, set motor4kw" pass \
+        env FW_TEST_SCENARIO=scenarios/from_rest_1000rpm.scn \
+        FW_TEST_DESK_ARGS="--params params/motor4kw.params" sh tools/qemu-sim-test.sh \
+        mps2-an386 "$num" "$BUILD/cortexm-mps2-an386-$num/uuvsim-motor4kw.elf" \
+        "$BUILD/linux-$num/uuvsim" "$BUILD/qemu-test/mps2-an386-$num-motor4kw"
 done
 run "qemu mps2-an386-fixed overruns, bad input" pass sh tools/qemu-overrun-test.sh \
     mps2-an386 "$BUILD/cortexm-mps2-an386-fixed/uuvsim_overrun.elf" "$BUILD/linux-fixed/uuvsim" \

@@ -30,6 +30,7 @@
 #include "board.h"
 #include "executive.h"
 #include "fast_kernel.h"
+#include "fw_params.h"
 #include "hal/hal.h"
 #include "hal_cortexm.h"
 #include "scenario.h"
@@ -276,6 +277,7 @@ __attribute__((noinline)) static bool fw_load_scenario(const char *path) {
 __attribute__((noinline)) static bool fw_init(const fw_args *a, const char *path) {
     exec_config cfg;
     exec_config_default(&cfg);
+    cfg.params = fw_params;
     cfg.duration_s = a->duration_s;
     if (cfg.duration_s <= 0.0 && fw_scn.duration_s <= 0.0) {
         return fw_fail(path, ": no duration (give 'duration <s>' or duration=S)");

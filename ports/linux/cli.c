@@ -78,6 +78,19 @@ const char cli_usage[] =
     "(and summary.json) in 3-D with its plots, one page that opens from file://\n"
     "(three.js from libjs-three; UUVSIM_THREE_JS names another copy).\n";
 
+/* The usage's second part (C99 bounds a string literal at 4095 characters). */
+const char cli_usage_studies[] =
+    "\n"
+    "Parameter sets and studies (docs/studies.md):\n"
+    "       uuvsim params [--params FILE] [--set KEY=VALUE]... [--emit-c FILE.c]\n"
+    "       uuvsim sweep FILE --out DIR [-j N] [--shard K/N]\n"
+    "       uuvsim sweep-merge --out DIR DIR1 DIR2...\n"
+    "  --params FILE            a run's parameter set (uuvsim params prints the\n"
+    "                           default one with every key's unit, range, source)\n"
+    "  --set KEY=VALUE          overrides one key of the set (repeatable); the value\n"
+    "                           may end in its unit: --set 'stage.l=2e-3 H'\n"
+    "  --emit-c FILE.c          (params) the set as C, for make firmware PARAMS=FILE\n";
+
 static bool fail(char *err, size_t len, const char *format, ...)
     __attribute__((format(printf, 3, 4)));
 
@@ -96,7 +109,7 @@ static bool fail(char *err, size_t len, const char *format, ...) {
     return false;
 }
 
-typedef enum { OPT_FLAG, OPT_PATH, OPT_SECONDS, OPT_CHOICE, OPT_FRAME, OPT_PORT } opt_kind;
+typedef enum { OPT_FLAG, OPT_PATH, OPT_SECONDS, OPT_CHOICE, OPT_FRAME, OPT_PORT, OPT_SET } opt_kind;
 
 typedef struct {
     const char *name;
@@ -112,6 +125,9 @@ static const opt_spec options[] = {
     {"--csv", OPT_PATH, NULL, FIELD(csv_path)},
     {"--trace", OPT_PATH, NULL, FIELD(trace_path)},
     {"--summary", OPT_PATH, NULL, FIELD(summary_path)},
+    {"--params", OPT_PATH, NULL, FIELD(params_path)},
+    {"--emit-c", OPT_PATH, NULL, FIELD(emit_c_path)},
+    {"--set", OPT_SET, NULL, FIELD(sets)},
     {"--duration", OPT_SECONDS, NULL, FIELD(exec.duration_s)},
     {"--trace-from", OPT_SECONDS, NULL, FIELD(trace_from_s)},
     {"--trace-to", OPT_SECONDS, NULL, FIELD(trace_to_s)},
@@ -245,6 +261,12 @@ static bool set_option(const opt_spec *spec, const char *value, cli_options *o, 
     case OPT_PATH:
         *(const char **)(void *)field = value;
         return true;
+    case OPT_SET:
+        if (o->n_sets >= CLI_MAX_SETS) {
+            return fail(err, err_len, "option --set: at most %d overrides", CLI_MAX_SETS);
+        }
+        o->sets[o->n_sets++] = value;
+        return true;
     case OPT_SECONDS: {
         double v = 0.0;
         size_t used = 0;
@@ -319,7 +341,12 @@ bool cli_parse(int argc, char **argv, cli_options *o, char *err, size_t err_len)
         o->view_dir = argv[2];
         return true;
     }
-    for (int i = 1; i < argc; i++) {
+    int first = 1;
+    if (argc >= 2 && strcmp(argv[1], "params") == 0) {
+        o->action = CLI_PARAMS;
+        first = 2;
+    }
+    for (int i = first; i < argc; i++) {
         const char *a = argv[i];
         if (strcmp(a, "--help") == 0 || strcmp(a, "-h") == 0) {
             o->action = CLI_HELP;
@@ -361,6 +388,12 @@ bool cli_parse(int argc, char **argv, cli_options *o, char *err, size_t err_len)
         if (!set_option(spec, value, o, err, err_len)) {
             return false;
         }
+    }
+    if (o->action == CLI_PARAMS) {
+        return true;
+    }
+    if (o->emit_c_path != NULL) {
+        return fail(err, err_len, "option --emit-c: only with uuvsim params");
     }
     if (o->scenario_path == NULL) {
         return fail(err, err_len, "no scenario: expected --scenario FILE (see --help)");

@@ -11,7 +11,9 @@
 
 #include "executive.h"
 
-typedef enum { CLI_RUN, CLI_DERIVS, CLI_VIEW, CLI_HELP, CLI_VERSION } cli_action;
+typedef enum { CLI_RUN, CLI_DERIVS, CLI_VIEW, CLI_HELP, CLI_VERSION, CLI_PARAMS } cli_action;
+
+#define CLI_MAX_SETS 64 /* --set options */
 
 typedef struct {
     cli_action action;
@@ -21,6 +23,10 @@ typedef struct {
     const char *summary_path;   /* --summary: the JSON summary, to a file */
     const char *derivs_path;    /* derivs FILE */
     const char *view_dir;       /* view RUN_DIR */
+    const char *params_path;    /* --params: a parameter set (ports/linux/params.h) */
+    const char *emit_c_path;    /* params --emit-c: the set as C, for a firmware image */
+    const char *sets[CLI_MAX_SETS]; /* --set KEY=VALUE, in order */
+    int n_sets;
     double trace_from_s;        /* --trace-from */
     double trace_to_s;          /* --trace-to */
     exec_config exec;           /* plant, laws, inverter, couplings, rates, duration */
@@ -48,5 +54,6 @@ void cli_frames_ns(const exec_config *c, uint64_t ns[4]);
 const char *cli_frame_text(uint64_t ns, char *buf, size_t len);
 
 extern const char cli_usage[];
+extern const char cli_usage_studies[]; /* printed after cli_usage */
 
 #endif /* UUV_CLI_H */

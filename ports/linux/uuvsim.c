@@ -21,6 +21,8 @@
 #include "csv_out.h"
 #include "live.h"
 #include "math/umath.h"
+#include "paramset.h"
+#include "sweep.h"
 #include "uuv_config.h"
 #include "view.h"
 
@@ -93,6 +95,7 @@ static bool load_scenario(const char *path, scenario *scn) {
 
 typedef struct {
     const cli_options *o;
+    const char *params;        /* the parameter set's label (params_label) */
     exec *e;
     exec_frame last;
     double wall_s;
@@ -182,6 +185,11 @@ static void print_json(FILE *f_out, const run_result *r) {
            inverter_names[e->cfg.inverter]);
     fprintf(f_out, "  \"modulator\": \"%s\",\n  \"dead_time_s\": %.9g,\n",
             modulator_names[e->cfg.modulator], 1e-9 * (double)e->cfg.dead_time_ns);
+    fprintf(f_out, "  \"params\": \"");
+    for (const char *c = r->params; *c != '\0'; c++) {
+        fprintf(f_out, (*c == '"' || *c == '\\') ? "\\%c" : "%c", *c);
+    }
+    fprintf(f_out, "\",\n");
     fprintf(f_out, "  \"slow_to_fast\": \"%s\",\n  \"fast_to_slow\": \"%s\",\n", down_names[e->cfg.down],
            up_names[e->cfg.up]);
     /* The frames the run used (a single-rate run steps every segment at the fast one). */
@@ -288,6 +296,7 @@ static void print_text(const run_result *r) {
     } else {
         printf("\nframes: fast %s, motor %s, controller %s, slow %s", t[0], t[1], t[2], t[3]);
     }
+    printf("\nparameters: %s", r->params);
     printf("\nsimulated %.1f s in %.3f s (%.*fx real time)\n", f->t_s, r->wall_s,
            rtf < 10.0 ? 2 : 0, rtf);
     if (r->o->realtime && r->realtime_late > 0u) {
@@ -469,8 +478,15 @@ static int run(const cli_options *o) {
                 err.message);
         return 2;
     }
+    static param_store *set;
+    set = params_new();
+    if (set == NULL || !params_load(set, o->params_path, o->sets, o->n_sets)) {
+        return 2;
+    }
+    exec_config cfg = o->exec;
+    cfg.params = params_set(set);
     static exec e;
-    exec_status st = exec_init(&e, &o->exec, &scn);
+    exec_status st = exec_init(&e, &cfg, &scn);
     if (st != EXEC_OK) {
         print_init_error(o, &scn, st);
         return 2;
@@ -512,7 +528,7 @@ static int run(const cli_options *o) {
         trace_last = (uint64_t)(o->trace_to_s / fast_s + 0.5);
     }
     bool progress = !o->quiet && isatty(STDERR_FILENO);
-    run_result r = {o, &e, {0}, 0.0, 0.0, 0u, &scn};
+    run_result r = {o, params_label(set), &e, {0}, 0.0, 0.0, 0u, &scn};
     (void)exec_report_take(&e, &r.last);
     if (csv.f != NULL) {
         csv_row(csv.f, &r.last, full);
@@ -615,6 +631,9 @@ static int run(const cli_options *o) {
 int main(int argc, char **argv) {
     static cli_options o;
     char err[256];
+    if (argc >= 2 && (strcmp(argv[1], "sweep") == 0 || strcmp(argv[1], "sweep-merge") == 0)) {
+        return sweep_main(argc, argv);
+    }
     if (!cli_parse(argc, argv, &o, err, sizeof err)) {
         fprintf(stderr, "uuvsim: %s\n", err);
         return 2;
@@ -622,6 +641,7 @@ int main(int argc, char **argv) {
     switch (o.action) {
     case CLI_HELP:
         fputs(cli_usage, stdout);
+        fputs(cli_usage_studies, stdout);
         return out_stdout_ok() ? 0 : 2;
     case CLI_VERSION:
         printf("uuvsim %s (%s build)\n", UUVSIM_VERSION, UUV_NUMERIC_NAME);
@@ -630,6 +650,8 @@ int main(int argc, char **argv) {
         return uuvsim_derivs(o.derivs_path);
     case CLI_VIEW:
         return uuvsim_view(o.view_dir);
+    case CLI_PARAMS:
+        return params_command(o.params_path, o.sets, o.n_sets, o.emit_c_path);
     case CLI_RUN:
         break;
     }

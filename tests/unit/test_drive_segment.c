@@ -12,6 +12,7 @@
 #include <stddef.h>
 
 #include "drive_segment.h"
+#include "params.h"
 #include "math/umath.h"
 #include "models/battery/battery.h"
 #include "ut.h"
@@ -35,6 +36,10 @@ static void config_base(drive_config *c) {
     c->medium_per_control = 8u;
     c->medium_per_slow = 8u;
     c->v_dc0_v = 600.0;
+    c->stage = uuv_params_default.stage;
+    c->pwm = uuv_params_default.pwm;
+    c->motor = uuv_params_default.motor;
+    c->control = uuv_params_default.control;
 }
 
 /* What a run saw, step by step (fast steps after the last log_reset only). */

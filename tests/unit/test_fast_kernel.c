@@ -13,6 +13,7 @@
 #include <stdint.h>
 
 #include "drive_segment.h"
+#include "params.h"
 #include "models/propeller/propeller.h"
 #include "ut.h"
 
@@ -97,6 +98,10 @@ void suite_fast_kernel(void) {
     c.medium_per_control = 8u;
     c.medium_per_slow = 8u;
     c.v_dc0_v = 600.0;
+    c.stage = uuv_params_default.stage;
+    c.pwm = uuv_params_default.pwm;
+    c.motor = uuv_params_default.motor;
+    c.control = uuv_params_default.control;
     UT_TEST("set-up: a switching drive on the real-time path");
     UT_CHECK(propeller_init(&prop, &propeller_params_default) == PROPELLER_OK);
     UT_CHECK(drive_init(&ref, &c, &prop) == DRIVE_OK);
