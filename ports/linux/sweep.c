@@ -457,7 +457,7 @@ static bool csv_metric(const char *path, const char *op, const char *col, double
             }
         }
     }
-    double mx = -INFINITY, mn = INFINITY, sum = 0.0, last = 0.0;
+    double mx = -HUGE_VAL, mn = HUGE_VAL, sum = 0.0, last = 0.0;
     double *vals = NULL;
     size_t n = 0, cap = 0;
     while (index >= 0 && fgets(row, sizeof row, f) != NULL) {
