@@ -190,7 +190,9 @@ FW_SIZE_C := $(wildcard src/models/vessel/*.c src/models/battery/*.c src/math/*_
              src/autopilot.c src/scenario_player.c src/protection.c src/telemetry.c \
              ports/cortexm/startup.c ports/cortexm/semihost.c
 TEST_PART1 := battery drive_control fixedpoint hal harness induction_motor math telemetry
-TEST_PART2 := $(filter-out $(TEST_PART1),$(SUITES))
+TEST_PART2 := autopilot drive_segment exec_paths executive fast_kernel fmt inverter_avg manoeuvre \
+              math_paths parse
+TEST_PART3 := $(filter-out $(TEST_PART1) $(TEST_PART2),$(SUITES))
 
 # The suite list of one part of the unit tests.
 $(BUILD)/gen/part%/suites.inc: FORCE
@@ -301,7 +303,7 @@ $(eval $(call fw_variant,mps2-an500,fixed,$(CPU_M7),1,ports/cortexm/board_mps2.c
 $(eval $(call fw_variant,mps2-an500,float,$(CPU_M7),1,ports/cortexm/board_mps2.c,))
 $(eval $(call fw_variant,netduinoplus2,fixed,$(CPU_M4F),1,ports/cortexm/board_stm32f405.c,))
 $(eval $(call fw_variant,netduinoplus2,float,$(CPU_M4F),1,ports/cortexm/board_stm32f405.c,))
-$(eval $(call fw_variant,lm3s6965evb,fixed,$(CPU_M3),0,ports/cortexm/board_lm3s6965.c,1 2,-Os))
+$(eval $(call fw_variant,lm3s6965evb,fixed,$(CPU_M3),0,ports/cortexm/board_lm3s6965.c,1 2 3,-Os))
 
 # The set the firmware images link (see FW_PARAMS_C): written by the fixed
 # desk program, which refuses a set the fixed build's bases cannot hold;
