@@ -81,7 +81,8 @@ $(BUILD)/cortexm-$(FW_OVERRUN_VARIANT)/obj-overrun/fw_main.o: ports/cortexm/fw_m
 	$(ARM_CC) $($(FW_OVERRUN_VARIANT)_CFLAGS) -DFW_OVERRUN_TEST=1 -c $< -o $@
 
 $(FW_OVERRUN_ELF): $($(FW_OVERRUN_VARIANT)_SRC_O) \
-                   $(BUILD)/cortexm-$(FW_OVERRUN_VARIANT)/obj-overrun/fw_main.o
+                   $(BUILD)/cortexm-$(FW_OVERRUN_VARIANT)/obj-overrun/fw_main.o \
+                   $(filter-out %/fw_main.o,$($(FW_OVERRUN_VARIANT)_SIM_O))
 	$(ARM_CC) $($(FW_OVERRUN_VARIANT)_LDFLAGS) -Wl,--defsym=STACK_SIZE=$(FW_STACK_BYTES) \
 	    -o $@ $^ -lgcc
 
