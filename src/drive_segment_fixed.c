@@ -12,6 +12,7 @@
 
 #include "math/umath.h"
 #include "models/drive/drive_units.h"
+#include "models/drive/inverter/leg_fault.h"
 #include "models/drive/inverter/power_stage_fast.h"
 
 #define Q31_ONE 2147483648.0
@@ -243,29 +244,38 @@ static inline void fast_tick_plain(drive_segment *d) {
     d->sums.v_dc += ps->v_dc;
 }
 
-/*
- * The duties the faults leave (see drive_faults): a leg whose upper switch
- * is open conducts where it is commanded on only through its upper diode,
- * which it takes when the inductor current flows into the leg (i_L < 0);
- * one whose lower switch is open, likewise where it is commanded off; once
- * the protection has blocked the gates every leg is its diodes' (the upper
- * for i_L < 0, the lower otherwise).
- */
-static void faulted_duties(drive_segment *d, int32_t duty[3]) {
+/* What the faults and a trip leave of each leg (leg_fault.h), by the filter currents. */
+static void legs_faulted(const drive_segment *d, leg_state f[3]) {
     const int32_t i_l[3] = {d->ps.ph[0].i_l, d->ps.ph[1].i_l,
                             -d->ps.ph[0].i_l - d->ps.ph[1].i_l};
+    const bool blocked = (d->trip != (uint8_t)DRIVE_TRIP_NONE);
     for (uint32_t x = 0u; x < 3u; x++) {
-        const bool diode = i_l[x] < 0;
-        const int32_t by_diode = diode ? PWM_RT_DUTY_ONE : 0;
-        if (d->trip != (uint8_t)DRIVE_TRIP_NONE) {
-            duty[x] = by_diode;
-        } else if (d->fault.switch_open == 2u * x + 1u && !diode) {
-            duty[x] = 0;
-        } else if (d->fault.switch_open == 2u * x + 2u && diode) {
-            duty[x] = PWM_RT_DUTY_ONE;
+        f[x] = leg_fault_state(blocked, d->fault.switch_open, x, i_l[x] < 0);
+    }
+}
+
+/* The real-time modulator's duties and leg states the faults leave (switching inverter). */
+static void faulted_duties(drive_segment *d, int32_t duty[3]) {
+    leg_state f[3];
+    legs_faulted(d, f);
+    for (uint32_t x = 0u; x < 3u; x++) {
+        if (f[x] != LEG_MODULATED) {
+            duty[x] = (f[x] == LEG_HIGH) ? PWM_RT_DUTY_ONE : 0;
         }
         if (duty[x] == 0 || duty[x] == PWM_RT_DUTY_ONE) {
             d->s[x] = (duty[x] != 0) ? 1 : 0;
+        }
+    }
+}
+
+/* The same on the general modulator's step (event inverter). */
+static void faulted_pwm_out(const drive_segment *d, pwm_out_q *out) {
+    leg_state f[3];
+    legs_faulted(d, f);
+    for (uint32_t x = 0u; x < 3u; x++) {
+        if (f[x] != LEG_MODULATED) {
+            out->duty[x] = (f[x] == LEG_HIGH) ? PWM_DUTY_ONE_Q : 0;
+            out->state[x] = (f[x] == LEG_HIGH) ? 1u : 0u;
         }
     }
 }
@@ -289,6 +299,7 @@ static void fast_tick_general(drive_segment *d) {
         ps_fast_step_call_q(&d->ps, &d->in.battery, duty, d->i_fast[0], d->i_fast[1]);
     } else {
         pwm_step_q(&d->pwm, &d->pout);
+        faulted_pwm_out(d, &d->pout);
         d->in.duty[0] = d->pout.duty[0];
         d->in.duty[1] = d->pout.duty[1];
         d->in.duty[2] = d->pout.duty[2];

@@ -3,7 +3,10 @@
 # (1000 rpm from rest, rudder 10 deg at 1 s, the fault at 2 s, rudder -10
 # deg at 2.5 s). Each run must complete, list the fault in the summary and
 # the records, produce no NaN or Inf, report the saturation count, and show
-# the fault's effect and the protection's reaction. Run once per build:
+# the fault's effect and the protection's reaction. Then the fault matrix:
+# the 8 faults alone and in pairs (36 runs) on the switching and on the
+# event inverter, which must show the same protection response (see
+# matrix() below). Run once per build:
 #   test_faults.sh UUVSIM
 # Prints one line per check and "N passed, N failed".
 set -u
@@ -13,11 +16,13 @@ trap 'rm -rf "$tmp"' EXIT
 pass=0
 fail=0
 
-# run FAULT [RPM]: writes $tmp/s.json and $tmp/r.csv
+# run FAULTS [RPM [INVERTER]]: writes $tmp/s.json and $tmp/r.csv (FAULTS: one or more
+# fault commands, all at 2 s)
 run() {
     printf 'duration 4\nat 0 n_rpm=%s\nat 1 rudder=10deg\nat 2 %s\nat 2.5 rudder=-10deg\n' \
         "${2:-1000}" "$1" >"$tmp/f.scn"
-    "$uuvsim" --scenario "$tmp/f.scn" --json --csv "$tmp/r.csv" >"$tmp/s.json" 2>"$tmp/err"
+    "$uuvsim" --scenario "$tmp/f.scn" --inverter "${3:-switching}" --json --csv "$tmp/r.csv" \
+        >"$tmp/s.json" 2>"$tmp/err"
 }
 
 # field NAME: the summary's value of a top-level or final key (numbers, booleans, strings)
@@ -77,5 +82,59 @@ check "propeller fouled (load x3) at 1000 rpm: three times the torque, speed wit
     "prop_fouling=3" 'n > 980 && n < 1020 && te > 70 && te < 85 && trip == "false"'
 check "propeller fouled (load x3) at 1400 rpm: the torque limit holds 95 N m, the speed falls to 1105" \
     "prop_fouling=3" 'n > 1080 && n < 1130 && te > 90 && te < 100 && lim > 1.5 && trip == "false"' 1400
+
+# The fault matrix. For each fault set, one run per layer; each run's figures
+# as "reason at_s n_rpm i_rms te delta_r" (the trip's time "-" when none; the
+# last four from the last record).
+figures() {
+    run "$1" 1000 "$2" || { echo "exit status $?: $(cat "$tmp/err")"; return; }
+    if grep -qiE 'nan|inf' "$tmp/r.csv"; then echo "NaN or Inf in the records"; return; fi
+    at=$(field at_s)
+    echo "$(field reason | tr ' ' _) ${at:--} $(field n_rpm) $(last i_rms_a) $(last te_nm)" \
+         "$(last delta_r_rad)"
+}
+
+# Both layers must give: the same trip (kind, and time within one slow frame,
+# 0.1 s), the same final shaft speed within 0.5 % + 1 rpm, and the same
+# behaviour after a trip (gates blocked: under 1 A rms and 0.01 N m on both)
+# or without one (torque within 2 % + 0.5 N m); the rudder the same within
+# 1e-3 rad.
+matrix() {
+    sw=$(figures "$1" switching)
+    ev=$(figures "$1" event)
+    why=$(echo "$sw $ev" | awk 'NF != 12 { print "no figures: " $0; exit }
+        { if ($1 != $7) { print "trip " $1 " against " $7; exit }
+          if ($2 != "-" || $8 != "-") {
+              if ($2 == "-" || $8 == "-" || $2 - $8 > 0.1 + 1e-9 || $8 - $2 > 0.1 + 1e-9) {
+                  print "trip at " $2 " s against " $8 " s"; exit } }
+          dn = $3 - $9; if (dn < 0) dn = -dn
+          if (dn > 0.005 * $3 + 1) { print "shaft " $3 " against " $9 " rpm"; exit }
+          if ($1 != "none") {
+              if ($4 > 1 || $10 > 1 || $5 > 0.01 || $5 < -0.01 || $11 > 0.01 || $11 < -0.01) {
+                  print "after the trip " $4 "/" $10 " A rms, " $5 "/" $11 " N m"; exit } }
+          else { dt = $5 - $11; if (dt < 0) dt = -dt; m = ($5 < 0) ? -$5 : $5
+              if (dt > 0.02 * m + 0.5) { print "torque " $5 " against " $11 " N m"; exit } }
+          dr = $6 - $12; if (dr < 0) dr = -dr
+          if (dr > 1e-3) { print "rudder " $6 " against " $12 " rad"; exit } }')
+    if [ -z "$why" ]; then
+        pass=$((pass + 1))
+        echo "$sw $ev" | awk -v c="$1" '{ gsub("_", " ", $1); printf "  ok    matrix %s: %s%s, shaft %.1f / %.1f rpm, %.2f / %.2f A rms (switching / event)\n", c, $1, ($2 == "-") ? "" : " at " $2 " s", $3, $9, $4, $10 }'
+    else
+        fail=$((fail + 1)); echo "  FAIL  matrix $1: $why"
+    fi
+}
+
+faults="switch_open=a+ leg_short=b dc_cap=0.1 battery_cutoff=on fin_jam=rudder current_offset=10
+phase_open=b prop_fouling=3"
+for a in $faults; do
+    matrix "$a"
+done
+set -- $faults
+while [ $# -gt 1 ]; do
+    a=$1; shift
+    for b in "$@"; do
+        matrix "$a $b"
+    done
+done
 echo "$pass passed, $fail failed"
 [ "$fail" -eq 0 ]
