@@ -85,7 +85,8 @@ static const value_rule angle_rule = {"rad", true, 1e-6, 45.0 * DEG_TO_RAD, NULL
 typedef struct {
     scenario *s;
     scenario_error *err;
-    unsigned line;
+    uint32_t line;
+    uint32_t init_line[VESSEL_NSTATES]; /* the line that set each initial state (0: none) */
 } parser;
 
 static bool fail(parser *p, const parse_token *field, const char *format, ...)
@@ -93,20 +94,19 @@ static bool fail(parser *p, const parse_token *field, const char *format, ...)
 
 static bool fail(parser *p, const parse_token *field, const char *format, ...) {
     p->err->line = p->line;
+    /* The file's text is echoed escaped (fmt_text_safe): what a terminal shows is what is there. */
     if (field != NULL) {
-        size_t n = field->len < sizeof p->err->field - 1u ? field->len
-                                                          : sizeof p->err->field - 1u;
-        for (size_t i = 0; i < n; i++) {
-            p->err->field[i] = field->text[i];
-        }
-        p->err->field[n] = '\0';
+        (void)fmt_text_safe(p->err->field, sizeof p->err->field, field->text, field->len);
     } else {
         p->err->field[0] = '\0';
     }
+    char raw[sizeof p->err->message];
     va_list args;
     va_start(args, format);
-    (void)fmt_vformat(p->err->message, sizeof p->err->message, format, args);
+    size_t n = fmt_vformat(raw, sizeof raw, format, args);
     va_end(args);
+    (void)fmt_text_safe(p->err->message, sizeof p->err->message, raw,
+                        (n < sizeof raw) ? n : sizeof raw - 1u);
     return false;
 }
 
@@ -188,8 +188,8 @@ static bool parse_duration(parser *p, const parse_token *tok, size_t n) {
     }
     static const value_rule rule = {"s", false, 1e-3, MAX_TIME_S, NULL};
     if (p->s->duration_line != 0u) {
-        return fail(p, &tok[0], "a second duration (the first is on line %u)",
-                    (unsigned)p->s->duration_line);
+        return fail(p, &tok[0], "a second duration (the first is on line %lu)",
+                    (unsigned long)p->s->duration_line);
     }
     p->s->duration_line = p->line;
     return read_value(p, &tok[0], tok[1].text, tok[1].len, &rule, &p->s->duration_s);
@@ -211,11 +211,16 @@ static bool parse_init(parser *p, const parse_token *tok, size_t n) {
             return fail(p, &name, "unknown state (expected one of u_mps ... n_rpm, as in the "
                                   "reference CSV layout)");
         }
+        if (p->init_line[k] != 0u) {
+            return fail(p, &name, "a second initial %s (the first is on line %lu)",
+                        vessel_state_names[k], (unsigned long)p->init_line[k]);
+        }
+        p->init_line[k] = p->line;
         if (!read_value(p, &name, value.text, value.len, &state_rules[k], &p->s->init[k])) {
             return false;
         }
         if (k == (int)VESSEL_N_RPM) {
-            p->s->init_rpm_line = (uint16_t)(p->line > 65535u ? 65535u : p->line);
+            p->s->init_rpm_line = p->line;
         }
     }
     return true;
@@ -236,7 +241,7 @@ static bool add_event(parser *p, const parse_token *field, double t, int command
     s->events[k].t_s = t;
     s->events[k].value = v;
     s->events[k].command = (uint16_t)command;
-    s->events[k].line = (uint16_t)(p->line > 65535u ? 65535u : p->line);
+    s->events[k].line = p->line;
     s->n_events++;
     return true;
 }
@@ -342,17 +347,22 @@ bool scenario_parse(scenario *s, const char *text, size_t n, scenario_error *err
     *s = (scenario){0};
     s->zigzag.stop_s = -1.0;
     *err = (scenario_error){0};
-    parser p = {s, err, 0u};
-    size_t start = 0;
+    parser p = {s, err, 0u, {0u}};
+    /* A UTF-8 byte-order mark at the start is no text. */
+    size_t start = (n >= 3u && (unsigned char)text[0] == 0xEFu &&
+                    (unsigned char)text[1] == 0xBBu && (unsigned char)text[2] == 0xBFu)
+                       ? 3u
+                       : 0u;
     while (start < n) {
+        /* A line ends at LF, CR LF or a CR alone. */
         size_t end = start;
-        while (end < n && text[end] != '\n') {
+        while (end < n && text[end] != '\n' && text[end] != '\r') {
             end++;
         }
         p.line++;
         for (size_t i = start; i < end; i++) {
             char c = text[i];
-            if (c == '\0' || ((unsigned char)c < 0x20u && c != '\t' && c != '\r')) {
+            if ((unsigned char)c < 0x20u && c != '\t') {
                 return fail(&p, NULL, "unexpected control character (byte 0x%02x)",
                             (unsigned)(unsigned char)c);
             }
@@ -360,7 +370,7 @@ bool scenario_parse(scenario *s, const char *text, size_t n, scenario_error *err
         if (!parse_line(&p, text + start, end - start)) {
             return false;
         }
-        start = end + 1u;
+        start = end + ((end + 1u < n && text[end] == '\r' && text[end + 1u] == '\n') ? 2u : 1u);
     }
     return true;
 }

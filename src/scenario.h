@@ -23,7 +23,11 @@
  *   zigzag rudder=<amp> heading=<threshold> [start=<s>] [stop=<s>]
  *
  * A command holds until changed. Events apply at the first slow-frame
- * boundary at or after their time, in file order for equal times.
+ * boundary at or after their time, in file order for equal times. The
+ * duration and each initial state may be given once. Lines end at LF,
+ * CR LF or a CR alone; a UTF-8 byte-order mark at the start is skipped.
+ * Errors echo the file's text escaped (fmt_text_safe), with 32-bit line
+ * numbers.
  */
 #ifndef UUV_SCENARIO_H
 #define UUV_SCENARIO_H
@@ -72,7 +76,7 @@ typedef struct {
     double t_s;       /* [s] time the command takes effect */
     double value;     /* in the command's unit (angles already in rad) */
     uint16_t command; /* scenario_command */
-    uint16_t line;    /* source line, for messages */
+    uint32_t line;    /* source line, for messages */
 } scenario_event;
 
 typedef struct {
@@ -87,7 +91,7 @@ typedef struct {
     double duration_s;                    /* [s]; 0 when the file gave none */
     uint32_t duration_line;               /* its line (0: none) */
     double init[VESSEL_NSTATES];          /* initial vessel state */
-    uint16_t init_rpm_line;               /* line of an init n_rpm=... (0: none) */
+    uint32_t init_rpm_line;               /* line of an init n_rpm=... (0: none) */
     scenario_event events[SCENARIO_MAX_EVENTS];
     size_t n_events;
     scenario_zigzag zigzag;

@@ -353,3 +353,82 @@ void fmt_print(const char *format, ...) {
     va_end(args);
     hal_console_write(line, (n < sizeof line) ? n : sizeof line - 1u);
 }
+
+/*
+ * The code point of the UTF-8 sequence at s[0..n) (n > 0) and its length,
+ * or 0 when it is not well-formed (a stray continuation byte, a truncated
+ * or overlong sequence, a surrogate, beyond U+10FFFF).
+ */
+static size_t utf8_decode(const unsigned char *s, size_t n, uint32_t *cp) {
+    static const uint32_t least[4] = {0u, 0x80u, 0x800u, 0x10000u};
+    const unsigned char b = s[0];
+    size_t len = (b < 0x80u) ? 1u : (b >= 0xC0u && b < 0xE0u) ? 2u
+                              : (b >= 0xE0u && b < 0xF0u) ? 3u
+                              : (b >= 0xF0u && b < 0xF8u) ? 4u : 0u;
+    if (len == 0u || len > n) {
+        return 0u;
+    }
+    uint32_t c = (len == 1u) ? b : (uint32_t)b & (0x7Fu >> len);
+    for (size_t i = 1u; i < len; i++) {
+        if ((s[i] & 0xC0u) != 0x80u) {
+            return 0u;
+        }
+        c = (c << 6) | (s[i] & 0x3Fu);
+    }
+    if (c < least[len - 1u] || c > 0x10FFFFu || (c >= 0xD800u && c <= 0xDFFFu)) {
+        return 0u;
+    }
+    *cp = c;
+    return len;
+}
+
+/* The invisible code points that move or hide text: C1, bidi controls, separators, BOM. */
+static bool hides_text(uint32_t c) {
+    return (c >= 0x80u && c <= 0x9Fu) || c == 0x061Cu || c == 0x200Eu || c == 0x200Fu ||
+           (c >= 0x2028u && c <= 0x202Eu) || (c >= 0x2066u && c <= 0x2069u) || c == 0xFEFFu;
+}
+
+size_t fmt_text_safe(char *buf, size_t cap, const char *text, size_t n) {
+    static const char hex[] = "0123456789abcdef";
+    const unsigned char *s = (const unsigned char *)text;
+    size_t len = 0u;
+    size_t i = 0u;
+    while (i < n && cap > 0u) {
+        char unit[8];
+        size_t u = 0u;
+        uint32_t c = 0u;
+        size_t k = utf8_decode(s + i, n - i, &c);
+        if (k == 0u || c < 0x20u || c == 0x7Fu) {
+            c = s[i];
+            k = 1u;
+            unit[u++] = '\\';
+            unit[u++] = 'x';
+            unit[u++] = hex[c >> 4];
+            unit[u++] = hex[c & 15u];
+        } else if (hides_text(c)) {
+            unit[u++] = '\\';
+            unit[u++] = 'u';
+            for (int shift = 12; shift >= 0; shift -= 4) {
+                unit[u++] = hex[(c >> (unsigned)shift) & 15u];
+            }
+        } else if (c == '\\') {
+            unit[u++] = '\\';
+            unit[u++] = '\\';
+        } else {
+            for (size_t j = 0u; j < k; j++) {
+                unit[u++] = (char)s[i + j];
+            }
+        }
+        if (len + u > cap - 1u) {
+            break; /* a whole character or escape, or none */
+        }
+        for (size_t j = 0u; j < u; j++) {
+            buf[len++] = unit[j];
+        }
+        i += k;
+    }
+    if (cap > 0u) {
+        buf[len] = '\0';
+    }
+    return len;
+}

@@ -29,15 +29,16 @@ static void broken(const char *what, const scenario_error *err) {
     abort();
 }
 
+/* Lines end at LF, CR LF or a CR alone (scenario.h). */
 static unsigned count_lines(const uint8_t *data, size_t size) {
     unsigned lines = 0u;
     size_t i = 0u;
     while (i < size) {
         lines++;
-        while (i < size && data[i] != '\n') {
+        while (i < size && data[i] != '\n' && data[i] != '\r') {
             i++;
         }
-        i++;
+        i += (i + 1u < size && data[i] == '\r' && data[i + 1u] == '\n') ? 2u : 1u;
     }
     return lines;
 }

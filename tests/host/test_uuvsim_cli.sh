@@ -367,6 +367,41 @@ expect_error "error: a fault the averaged inverter cannot model" \
 expect_error "error: a drive fault with the vessel plant" \
     "fault.scn:3: field 'leg_short': .*vessel plant has no drive" \
     "$uuvsim" --plant vessel --scenario "$tmp/fault.scn" --csv "$tmp/bad.csv"
+# Line numbers are 32-bit: a refusal on line 70001 says 70001 (not 65535).
+awk 'BEGIN { print "duration 1"; print "at 0 n_rpm=800"; for (i = 3; i <= 70000; i++) print "#";
+             print "at 0.5 leg_short=a" }' >"$tmp/long.scn"
+expect_error "error: a configuration refusal on line 70001 names line 70001" \
+    "long.scn:70001: field 'leg_short': the averaged inverter has no switches" \
+    "$uuvsim" --inverter averaged --scenario "$tmp/long.scn" --csv "$tmp/bad.csv"
+{ head -n 70000 "$tmp/long.scn"; echo "init n_rpm=100"; } >"$tmp/long_init.scn"
+expect_error "error: an initial shaft speed on line 70001 names line 70001" \
+    "long_init.scn:70001: field 'n_rpm': the full plant starts its motor at rest" \
+    "$uuvsim" --scenario "$tmp/long_init.scn"
+
+# Scenario text as editors write it, and text that would deceive an echo.
+printf '\357\273\277duration 0.3\r\nat 0 n_rpm=500\r\n' >"$tmp/bom.scn"
+check "scenario: a UTF-8 byte-order mark and CR LF line ends are read" \
+    "$uuvsim" --quiet --scenario "$tmp/bom.scn"
+printf 'duration 0.3\rat 0 n_rpm=500\rat 0.2 rudder=x\r' >"$tmp/mac.scn"
+expect_error "error: a file of CR line ends is read as lines (the error on line 3)" \
+    "mac.scn:3: field 'rudder': expected a number" "$uuvsim" --scenario "$tmp/mac.scn"
+printf 'duration 1\nat 0 n_rpm=5\342\200\256007\302\233\n' >"$tmp/bidi.scn"
+expect_error "error: a bidi override and a C1 control are echoed escaped" \
+    "bidi.scn:2: field 'n_rpm': expected a number in rpm, got '5\\\\u202e007\\\\u009b'" \
+    "$uuvsim" --scenario "$tmp/bidi.scn"
+if LC_ALL=C grep -q "$(printf '\342\200\256')" "$tmp/stderr"; then
+    fail=$((fail + 1)); echo "  FAIL  error: the bidi override is not in the message raw"
+else
+    pass=$((pass + 1)); echo "  ok    error: the bidi override is not in the message raw"
+fi
+printf 'duration 1\ninit u_mps=1\ninit u_mps=2\n' >"$tmp/i2.scn"
+expect_error "error: an initial state given twice" \
+    "i2.scn:3: field 'u_mps': a second initial u_mps \\(the first is on line 2\\)" \
+    "$uuvsim" --scenario "$tmp/i2.scn"
+mkfifo "$tmp/fifo.scn"
+expect_error "error: --scenario FIFO is refused without waiting for a writer" \
+    "fifo.scn: cannot open: not a regular file" timeout 60 "$uuvsim" --scenario "$tmp/fifo.scn"
+
 expect_error "error: bad --plant value" "expected one of vessel|full" \
     "$uuvsim" --plant boat --scenario scenarios/turning_circle.scn
 

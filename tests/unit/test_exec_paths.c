@@ -663,6 +663,19 @@ static void test_overruns(void) {
     UT_CHECK(exec_slow_pending(&ex));
     exec_slow_step(&ex);
     UT_EQ_INT(ex.count.slow, 0);
+
+    UT_TEST("the overruns' sum saturates at UINT32_MAX instead of wrapping to a small count");
+    ex.count.overruns_medium = UINT32_MAX - 1u;
+    ex.count.overruns_control = 1u;
+    ex.count.overruns_slow = 0u;
+    UT_CHECK(exec_overruns(&ex) == UINT32_MAX);
+    ex.count.overruns_slow = 5u;
+    UT_CHECK(exec_overruns(&ex) == UINT32_MAX);
+    ex.count.overruns_medium = 3u;
+    ex.count.overruns_control = UINT32_MAX;
+    UT_CHECK(exec_overruns(&ex) == UINT32_MAX);
+    ex.count.overruns_control = 4u;
+    UT_CHECK(exec_overruns(&ex) == 12u);
 }
 
 /* ---- Autopilots ------------------------------------------------------------ */

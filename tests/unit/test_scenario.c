@@ -129,6 +129,73 @@ static void test_more_forms(void) {
     UT_CHECK(message_has("0x00"));
 }
 
+/* True when the field and the message of the last error hold no byte b. */
+static bool error_lacks(unsigned char b) {
+    const char *const texts[2] = {err.field, err.message};
+    for (size_t t = 0; t < 2u; t++) {
+        for (const char *c = texts[t]; *c != '\0'; c++) {
+            if ((unsigned char)*c == b) {
+                return false;
+            }
+        }
+    }
+    return true;
+}
+
+/*
+ * Text as editors write it, and text meant to deceive: a byte-order mark,
+ * old Mac line ends, bidi overrides and C1 controls (echoed escaped), a
+ * field cut at a character boundary, and repeated initial states.
+ */
+static void test_text_forms(void) {
+    UT_TEST("scenario: a UTF-8 byte-order mark at the start is skipped (line 1 is the "
+            "first line after it)");
+    UT_CHECK(parse("\xEF\xBB\xBF" "duration 5\nat 1 n_rpm=100\n"));
+    UT_CHECK(scn.duration_s == 5.0 && scn.n_events == 1u && scn.events[0].line == 2u);
+    expect_error("\xEF\xBB\xBF" "duration x\n", 1, "duration");
+    expect_error("duration 5\n\xEF\xBB\xBF" "at 1 n_rpm=1\n", 2, "\\ufeffat");
+
+    UT_TEST("scenario: CR alone ends a line as LF and CR LF do (old Mac files)");
+    UT_CHECK(parse("duration 5\rat 1 n_rpm=100\rat 2 n_rpm=200"));
+    UT_CHECK(scn.duration_s == 5.0 && scn.n_events == 2u && scn.events[1].line == 3u);
+    UT_CHECK(parse("duration 5\r\nat 1 n_rpm=100\r\n\r\nat 2 n_rpm=200\r\n"));
+    UT_CHECK(scn.n_events == 2u && scn.events[1].line == 4u);
+    expect_error("duration 5\rat 1 n_rpm=x\r", 2, "n_rpm");
+
+    UT_TEST("scenario errors: bidi overrides, C1 controls, DEL, stray bytes and backslashes "
+            "are echoed escaped in the field and the message, never raw");
+    expect_error("at 1 n_rpm=5\xE2\x80\xAE" "00\n", 1, "n_rpm");
+    UT_CHECK(message_has("'5\\u202e00'") && error_lacks(0xE2u));
+    expect_error("at 1 \xE2\x81\xA6rudder=1\n", 1, "\\u2066rudder");
+    expect_error("at 1 n_rpm=1\xC2\x9B" "2\n", 1, "n_rpm");
+    UT_CHECK(message_has("'1\\u009b2'") && error_lacks(0xC2u) && error_lacks(0x9Bu));
+    expect_error("at 1 n_rpm=1\x7F" "\n", 1, "n_rpm");
+    UT_CHECK(message_has("'1\\x7f'") && error_lacks(0x7Fu));
+    expect_error("at 1 n_rpm=\xFF\xC3\n", 1, "n_rpm");
+    UT_CHECK(message_has("'\\xff\\xc3'") && error_lacks(0xFFu));
+    expect_error("at 1 a\\b=1\n", 1, "a\\\\b");
+    UT_TEST("scenario errors: well-formed UTF-8 text is echoed as it is");
+    expect_error("at 1 gr\xC3\xBC\xC3\x9F" "=1\n", 1, "gr\xC3\xBC\xC3\x9F");
+
+    UT_TEST("scenario errors: a long field is cut at a character boundary, never inside a "
+            "UTF-8 character or an escape");
+    /* Eight 3-byte characters: 24 bytes, one more than the field holds. */
+    expect_error("at 1 \xE4\xBD\xA0\xE4\xBD\xA0\xE4\xBD\xA0\xE4\xBD\xA0\xE4\xBD\xA0"
+                 "\xE4\xBD\xA0\xE4\xBD\xA0\xE4\xBD\xA0=1\n",
+                 1, "\xE4\xBD\xA0\xE4\xBD\xA0\xE4\xBD\xA0\xE4\xBD\xA0\xE4\xBD\xA0\xE4\xBD\xA0"
+                    "\xE4\xBD\xA0");
+    /* 20 ASCII bytes then a bidi control: its 6-byte escape does not fit the 3 left. */
+    expect_error("at 1 abcdefghijklmnopqrst\xE2\x80\xAE=1\n", 1, "abcdefghijklmnopqrst");
+
+    UT_TEST("scenario errors: an initial state given twice, on one line or two, names the "
+            "second and the line of the first");
+    expect_error("init u_mps=1 u_mps=2\n", 1, "u_mps");
+    UT_CHECK(message_has("line 1"));
+    expect_error("duration 5\ninit u_mps=1 psi_rad=0\ninit psi_rad=1\n", 3, "psi_rad");
+    UT_CHECK(message_has("line 2"));
+    UT_CHECK(parse("init u_mps=1\ninit v_mps=0.5\n"));
+}
+
 void suite_scenario(void) {
     UT_TEST("scenario: every keyword, units and comments are read");
     const char *good = "# a comment line\n"
@@ -215,4 +282,5 @@ void suite_scenario(void) {
     many[n] = '\0';
     expect_error(many, SCENARIO_MAX_EVENTS + 1u, "n_rpm");
     test_more_forms();
+    test_text_forms();
 }
