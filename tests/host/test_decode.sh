@@ -5,7 +5,8 @@
 # decoder; the JSON summary stays valid JSON with a machine name and a
 # scenario path full of quotes, backslashes, newlines and escape characters;
 # a record holding a NaN and an instruction count file with a negative count
-# are refused (exit 2), with nothing written. Prints "N passed, N failed".
+# are refused (exit 2), with nothing written; overruns near 2^32 at every
+# rate sum without wrapping. Prints "N passed, N failed".
 set -u
 decode=$1
 tmp=$(mktemp -d)
@@ -16,11 +17,12 @@ ok() { pass=$((pass + 1)); echo "  ok    $1"; }
 ko() { fail=$((fail + 1)); echo "  FAIL  $1"; sed 's/^/        /' "$tmp/err" | head -n 5; }
 version=$(sed -n 's/^#define TLM_VERSION \([0-9]*\)u.*/\1/p' src/telemetry.h)
 
-# stream.py OUT STATE X0: START (vessel plant, machine name with specials), one record
-# with u_mps = X0, END with the given state.
+# stream.py OUT STATE X0 [OVERRUNS]: START (vessel plant, machine name with specials), one
+# record with u_mps = X0, END with the given state and OVERRUNS at each of the four rates.
 cat >"$tmp/stream.py" <<'PY'
 import struct, sys, zlib
 out, state, x0, version = sys.argv[1], int(sys.argv[2]), float(sys.argv[3]), int(sys.argv[4])
+ovr = int(sys.argv[5]) if len(sys.argv) > 5 else 0
 def frame(t, seq, payload):
     body = struct.pack('<BHH', t, len(payload), seq) + payload
     return b'\xa5\x5a' + body + struct.pack('<I', zlib.crc32(body) & 0xffffffff)
@@ -28,8 +30,8 @@ machine = b'a"b\\c\nd\x1be'
 start = struct.pack('<BBBB5Id', version, 1, 0, 0, 100000000, 1, 1, 1, 1, 0.1) + \
     machine.ljust(24, b'\0')
 rec = struct.pack('<I', 0) + struct.pack('<30d', *([0.0, x0] + [0.0] * 28)) + struct.pack('<II', 0, 0)
-end = struct.pack('<BBH4Q5I2dI', state, 3 if state == 3 else 0, 0, 0, 0, 0, 1, 0, 0, 0, 0, 0,
-                  0.0, 0.0, 0)
+end = struct.pack('<BBH4Q5I2dI', state, 3 if state == 3 else 0, 0, 0, 0, 0, 1, ovr, ovr, ovr,
+                  ovr, 0, 0.0, 0.0, 0)
 open(out, 'wb').write(frame(1, 0, start) + frame(2, 1, rec) + frame(3, 2, end))
 PY
 python3 "$tmp/stream.py" "$tmp/g.bin" 3 1.0 "$version"
@@ -49,6 +51,13 @@ if [ $status -eq 2 ] && grep -q '^uuvsim-decode: .*NaN or an infinite' "$tmp/err
    [ ! -e "$tmp/n.csv" ] && [ -z "$(ls "$tmp" | grep partial)" ]; then
     ok "a record holding a NaN: refused (exit 2), nothing written"
 else echo "exit $status" >>"$tmp/err"; ko "a record holding a NaN: refused"; fi
+
+python3 "$tmp/stream.py" "$tmp/o.bin" 2 1.0 "$version" 4294967295
+"$decode" "$tmp/o.bin" --json "$tmp/o.json" 2>"$tmp/err"
+if python3 -c 'import json,sys; d = json.load(open(sys.argv[1]));
+assert d["overruns"] == 4 * 4294967295, d["overruns"]' "$tmp/o.json" 2>>"$tmp/err"; then
+    ok "overruns of 2^32 - 1 at each rate: summed to 17179869180, not wrapped"
+else ko "overruns of 2^32 - 1 at each rate: summed without wrapping"; fi
 
 printf 'stat fast count -5 min 1 max 2 sum 3\n' >"$tmp/i.txt"
 "$decode" "$tmp/g.bin" --insn "$tmp/i.txt" --json "$tmp/i.json" 2>"$tmp/err"
