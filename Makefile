@@ -42,7 +42,8 @@ TEST_C := tests/harness/ut.c tests/harness/runner.c $(sort $(wildcard tests/unit
 SUITES := $(patsubst tests/unit/test_%.c,%,$(sort $(wildcard tests/unit/test_*.c)))
 LINUX_PORT_C := $(sort $(wildcard ports/linux/hal_*.c))
 UUVSIM_C := ports/linux/uuvsim.c ports/linux/cli.c ports/linux/csv_out.c ports/linux/derivs.c \
-            ports/linux/view.c ports/linux/live.c ports/linux/out_file.c ports/linux/paramset.c ports/linux/sweep.c
+            ports/linux/view.c ports/linux/live.c ports/linux/out_file.c ports/linux/paramset.c ports/linux/sweep.c \
+            ports/linux/party_host.c
 CORTEXM_PORT_C := ports/cortexm/startup.c ports/cortexm/hal_cortexm.c \
                   ports/cortexm/semihost.c ports/cortexm/libc_min.c
 
@@ -431,6 +432,7 @@ bench: $(BUILD)/linux-fixed/bench $(BUILD)/linux-float/bench
 include mk/firmware.mk
 include mk/hardening.mk
 include mk/fmu.mk
+include mk/party.mk
 
 clean:
 	rm -rf $(BUILD)

@@ -48,7 +48,8 @@ static void apply_commands(exec *e, double t) {
     for (player_event ev = player_next(&e->player, t, e->x, &e->cmd); ev != PLAYER_IDLE;
          ev = player_next(&e->player, t, e->x, &e->cmd)) {
         if (ev == PLAYER_FAULT && e->cfg.plant == EXEC_PLANT_FULL && e->drive_ready) {
-            drive_fault_request(&e->drive, &e->player.faults);
+            e->down.faults = e->player.faults;
+            e->down.faults_new = true;
         }
     }
     player_steer(&e->player, t, e->x, e->report_s, &e->cmd);
@@ -157,7 +158,7 @@ static exec_status init_drive(exec *e) {
     if (e->player.fault_mask != 0u) {
         drive_fault_request(&e->drive, &e->player.faults);
     }
-    e->bat_next = b0;
+    e->down.bat_next = b0;
     e->speed_report_rpm = player_speed_at(&e->player, 0.0);
     drive_speed_command(&e->drive, e->speed_report_rpm * RPM_TO_RADPS);
     return EXEC_OK;
@@ -409,7 +410,6 @@ bool exec_slow_pending(const exec *e) { return e->slow_pending; }
 
 /* The battery's frame from the bus voltage the drive measured (i = G v - b). */
 static void battery_frame(exec *e) {
-    drive_slow_measure(&e->drive, &e->meas);
     const drive_slow_meas *m = &e->meas;
     double g = m->battery.g_s;
     double b = m->battery.b_a;
@@ -439,13 +439,9 @@ static void battery_frame(exec *e) {
     e->acc_n++;
     battery_companion bc = battery_companion_f64(&e->bat);
     /* The contactor open (battery_cutoff): no current either way. */
-    e->bat_next.g_s = e->player.battery_cut ? 0.0 : bc.g_s;
-    e->bat_next.b_a = e->player.battery_cut ? 0.0 : bc.b_a;
-    drive_battery_next(&e->drive, &e->bat_next);
-    drive_trip why = protection_step(&e->prot, m->i_phase_rms_a);
-    if (why != DRIVE_TRIP_NONE) {
-        drive_trip_request(&e->drive, why);
-    }
+    e->down.bat_next.g_s = e->player.battery_cut ? 0.0 : bc.g_s;
+    e->down.bat_next.b_a = e->player.battery_cut ? 0.0 : bc.b_a;
+    e->down.trip = (uint8_t)protection_step(&e->prot, m->i_phase_rms_a);
     if (m->trip != DRIVE_TRIP_NONE && e->trip_t_s < 0.0) {
         e->trip_t_s = (double)e->frame * e->slow_s;
     }
@@ -509,11 +505,12 @@ static void make_report(exec *e) {
     e->report_ready = (e->nonfinite == 0u);
 }
 
-void exec_slow_step(exec *e) {
+void exec_slow_model(exec *e) {
     if (e->state != EXEC_RUNNING) {
         return;
     }
     const exec_counters kept = e->count; /* restored by the guard below */
+    e->down.faults_new = false;
     if (e->cfg.plant == EXEC_PLANT_FULL) {
         battery_frame(e);
         /* The shaft speed over the frame just measured: its start, and the
@@ -554,7 +551,36 @@ void exec_slow_step(exec *e) {
     } else if (e->frame >= e->frames) {
         exec_end(e, EXEC_DONE);
     }
+    e->down.state = (uint8_t)e->state;
+}
+
+void exec_drive_take(exec *e, const exec_to_drive *d) {
+    drive_battery_next(&e->drive, &d->bat_next);
+    if (d->trip != (uint8_t)DRIVE_TRIP_NONE) {
+        drive_trip_request(&e->drive, (drive_trip)d->trip);
+    }
+    if (d->faults_new) {
+        drive_fault_request(&e->drive, &d->faults);
+    }
+    if (d->state != (uint8_t)EXEC_RUNNING) {
+        exec_end(e, (exec_state)d->state);
+    }
     e->slow_pending = false;
+}
+
+void exec_slow_step(exec *e) {
+    if (e->state != EXEC_RUNNING) {
+        return;
+    }
+    if (e->cfg.plant == EXEC_PLANT_FULL) {
+        drive_slow_measure(&e->drive, &e->meas);
+    }
+    exec_slow_model(e);
+    if (e->cfg.plant == EXEC_PLANT_FULL) {
+        exec_drive_take(e, &e->down);
+    } else {
+        e->slow_pending = false;
+    }
 }
 
 void exec_desk_step(exec *e) {

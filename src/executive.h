@@ -140,6 +140,18 @@ typedef struct {
     uint32_t saturations; /* fixed-point saturation events (fast models) */
 } exec_counters;
 
+/*
+ * What a slow step hands the drive (the slow -> drive buffer), applied by
+ * exec_drive_take(): all of it takes effect at the next slow boundary.
+ */
+typedef struct {
+    drive_battery bat_next; /* the battery companion for the next slow frame */
+    drive_faults faults;    /* the fault set, when faults_new */
+    bool faults_new;        /* a fault command was applied at this boundary */
+    uint8_t trip;           /* drive_trip the protection requests (DRIVE_TRIP_NONE: none) */
+    uint8_t state;          /* exec_state after the step: the run goes on or ends */
+} exec_to_drive;
+
 typedef struct {
     exec_state state;
     /* Schedule: the fast tick's counters first, near the start (short offsets). */
@@ -188,7 +200,7 @@ typedef struct {
     bool rel_slow;              /* the released medium task is at a slow boundary */
     uint64_t control_time_ns;   /* release time of the controller task */
     drive_slow_meas meas;       /* the slow frame's measurements (medium task -> slow) */
-    drive_battery bat_next;     /* the next companion (slow -> medium task) */
+    exec_to_drive down;         /* the slow step's results for the drive (slow -> drive) */
     /* Report accumulation over the reporting period. */
     double acc_te, acc_i_sq, acc_v_dc, acc_i_batt, acc_m, acc_f;
     uint32_t acc_n;
@@ -252,6 +264,27 @@ void exec_control_tick(exec *e);
 /* The background's slow step, when exec_slow_pending(). */
 bool exec_slow_pending(const exec *e);
 void exec_slow_step(exec *e);
+
+/*
+ * The slow step in its two halves, for a port that runs the drive and the
+ * slow segment in different processes (the multi-party run,
+ * docs/cosimulation.md); exec_slow_step() is
+ *   drive_slow_measure(&e->drive, &e->meas);  exec_slow_model(e);
+ *   exec_drive_take(e, &e->down);
+ * (the vessel plant: the model alone).
+ * - exec_slow_model(): the slow segment (battery, protection, vessel,
+ *   scenario, telemetry record) from e->meas, the drive's measurements of
+ *   the frame that ended, and e->speed_report_rpm, the controller's speed
+ *   command at that boundary (the medium task sets it; a port that runs the
+ *   drive elsewhere sets both from what the drive sent). Its results for the
+ *   drive are in e->down.
+ * - exec_drive_take(): the drive's side, in the executive that runs the
+ *   drive: applies what a slow step produced (its own, or another
+ *   process's), ends the run if that step ended it, and clears the pending
+ *   slow step.
+ */
+void exec_slow_model(exec *e);
+void exec_drive_take(exec *e, const exec_to_drive *d);
 
 /*
  * The desk loop's unit of work: one fast tick and whatever it released, in

@@ -109,6 +109,8 @@ static uint32_t payload_length(uint32_t type) {
     case TLM_START: return TLM_START_PAYLOAD;
     case TLM_RECORD: return TLM_RECORD_PAYLOAD;
     case TLM_END: return TLM_END_PAYLOAD;
+    case TLM_LINK_UP: return TLM_LINK_UP_PAYLOAD;
+    case TLM_LINK_DOWN: return TLM_LINK_DOWN_PAYLOAD;
     default: return 0u;
     }
 }
@@ -205,6 +207,55 @@ size_t tlm_encode_end(uint8_t *buf, uint16_t seq, const tlm_end *e) {
     return frame_end(buf, &w);
 }
 
+/* The link's measurement doubles in their transmitted order, as pointers into u. */
+#define LINK_UP_DOUBLES 19u
+
+static void link_up_fields(tlm_link_up *u, double *v[LINK_UP_DOUBLES]) {
+    drive_slow_meas *m = &u->meas;
+    double *const p[LINK_UP_DOUBLES] = {
+        &m->battery.g_s,     &m->battery.b_a,        &m->v_dc_mean_v, &m->v_dc_sq_mean_v2,
+        &m->shaft_radps,     &m->shaft_end_radps,    &m->te_nm,       &m->i_rms_a,
+        &m->v_dc_v,          &m->m_index,            &m->f_hz,        &m->e_mech_j,
+        &m->i_phase_rms_a[0], &m->i_phase_rms_a[1],  &m->i_phase_rms_a[2],
+        &m->e_loss_filter_j, &m->e_loss_motor_j,     &m->limit_s,     &u->speed_rpm};
+    for (size_t i = 0; i < LINK_UP_DOUBLES; i++) {
+        v[i] = p[i];
+    }
+}
+
+size_t tlm_encode_link_up(uint8_t *buf, uint16_t seq, const tlm_link_up *u) {
+    tlm_writer w = frame_begin(buf, TLM_LINK_UP, TLM_LINK_UP_PAYLOAD, seq);
+    tlm_link_up copy = *u;
+    double *v[LINK_UP_DOUBLES];
+    link_up_fields(&copy, v);
+    put_u32(&w, u->frame);
+    for (size_t i = 0; i < LINK_UP_DOUBLES; i++) {
+        put_f64(&w, *v[i]);
+    }
+    put_u32(&w, u->meas.saturations);
+    put_u32(&w, (uint32_t)u->meas.trip & 0xFFu);
+    return frame_end(buf, &w);
+}
+
+size_t tlm_encode_link_down(uint8_t *buf, uint16_t seq, const tlm_link_down *d) {
+    tlm_writer w = frame_begin(buf, TLM_LINK_DOWN, TLM_LINK_DOWN_PAYLOAD, seq);
+    const exec_to_drive *x = &d->down;
+    put_u32(&w, d->frame);
+    put_f64(&w, x->bat_next.g_s);
+    put_f64(&w, x->bat_next.b_a);
+    put_f64(&w, x->faults.dc_cap_frac);
+    put_f64(&w, x->faults.current_offset_a);
+    put_f64(&w, x->faults.load_factor);
+    put_u8(&w, x->faults.switch_open);
+    put_u8(&w, x->faults.leg_short);
+    put_u8(&w, x->faults.phase_open);
+    put_u8(&w, x->faults_new ? 1u : 0u);
+    put_u8(&w, x->trip);
+    put_u8(&w, x->state);
+    put_u16(&w, 0u); /* reserved */
+    return frame_end(buf, &w);
+}
+
 /* ---- Decoders ---------------------------------------------------------- */
 
 tlm_status tlm_frame_check(const uint8_t *buf, size_t avail, tlm_frame *f) {
@@ -291,6 +342,36 @@ void tlm_decode_end(const tlm_frame *f, tlm_end *e) {
     e->e_batt_j = get_f64(&r);
     e->e_mech_j = get_f64(&r);
     e->stack_used_bytes = get_u32(&r);
+}
+
+void tlm_decode_link_up(const tlm_frame *f, tlm_link_up *u) {
+    tlm_reader r = {f->payload};
+    double *v[LINK_UP_DOUBLES];
+    *u = (tlm_link_up){0};
+    link_up_fields(u, v);
+    u->frame = get_u32(&r);
+    for (size_t i = 0; i < LINK_UP_DOUBLES; i++) {
+        *v[i] = get_f64(&r);
+    }
+    u->meas.saturations = get_u32(&r);
+    u->meas.trip = (drive_trip)(get_u32(&r) & 0xFFu);
+}
+
+void tlm_decode_link_down(const tlm_frame *f, tlm_link_down *d) {
+    tlm_reader r = {f->payload};
+    exec_to_drive *x = &d->down;
+    d->frame = get_u32(&r);
+    x->bat_next.g_s = get_f64(&r);
+    x->bat_next.b_a = get_f64(&r);
+    x->faults.dc_cap_frac = get_f64(&r);
+    x->faults.current_offset_a = get_f64(&r);
+    x->faults.load_factor = get_f64(&r);
+    x->faults.switch_open = (uint8_t)get_u8(&r);
+    x->faults.leg_short = (uint8_t)get_u8(&r);
+    x->faults.phase_open = (uint8_t)get_u8(&r);
+    x->faults_new = get_u8(&r) != 0u;
+    x->trip = (uint8_t)get_u8(&r);
+    x->state = (uint8_t)get_u8(&r);
 }
 
 const char *tlm_status_text(tlm_status st) {

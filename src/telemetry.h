@@ -20,6 +20,18 @@
  *               i_rms_a, v_dc_v, i_batt_a, soc, m_index, f_hz (30 doubles);
  *   TLM_END     how the run ended: state, steps, overruns, energies, stack.
  * A stream is START, the records in order (index 0, 1, ...), END.
+ *
+ * The multi-party run's link (docs/cosimulation.md) uses the same frames:
+ * the drive's side sends START, then at each slow boundary LINK_UP, and
+ * END; the slow segment's side answers each LINK_UP with a LINK_DOWN.
+ *   TLM_LINK_UP    slow frame number k (u32, 1 for the first frame), the
+ *                  drive's measurements of frame k (drive_slow_meas: 18
+ *                  doubles, saturations u32, trip u8 + 3 reserved) and the
+ *                  controller's speed command at its end (a double);
+ *   TLM_LINK_DOWN  k (u32), then exec_to_drive: the battery companion g, b,
+ *                  the faults' dc_cap_frac, current_offset_a, load_factor
+ *                  (5 doubles), switch_open, leg_short, phase_open,
+ *                  faults_new, trip, state (u8 each) + 2 reserved.
  */
 #ifndef UUV_TELEMETRY_H
 #define UUV_TELEMETRY_H
@@ -39,11 +51,20 @@
 #define TLM_START_PAYLOAD (4u + 5u * 4u + 8u + TLM_MACHINE_CHARS)
 #define TLM_RECORD_PAYLOAD (4u + 30u * 8u + 2u * 4u)
 #define TLM_END_PAYLOAD (4u + 4u * 8u + 5u * 4u + 2u * 8u + 4u)
+#define TLM_LINK_UP_PAYLOAD (4u + 19u * 8u + 2u * 4u)
+#define TLM_LINK_DOWN_PAYLOAD (4u + 5u * 8u + 8u)
 #define TLM_FRAME_MAX (TLM_HEADER_BYTES + TLM_RECORD_PAYLOAD + TLM_CRC_BYTES)
+#define TLM_LINK_DOWN_FRAME (TLM_HEADER_BYTES + TLM_LINK_DOWN_PAYLOAD + TLM_CRC_BYTES)
 
 #define TLM_VERSION 2u
 
-typedef enum { TLM_START = 1, TLM_RECORD = 2, TLM_END = 3 } tlm_type;
+typedef enum {
+    TLM_START = 1,
+    TLM_RECORD = 2,
+    TLM_END = 3,
+    TLM_LINK_UP = 4,  /* drive -> slow segment, multi-party run */
+    TLM_LINK_DOWN = 5 /* slow segment -> drive, multi-party run */
+} tlm_type;
 
 /* What the run is. */
 typedef struct {
@@ -74,6 +95,18 @@ typedef struct {
     uint32_t stack_used_bytes;  /* high-water mark of the stack, measured (0: unknown) */
 } tlm_end;
 
+/* The link's frames (multi-party run). */
+typedef struct {
+    uint32_t frame;        /* the slow frame measured, 1 for the first */
+    drive_slow_meas meas;
+    double speed_rpm;      /* [rpm] the controller's speed command at the frame's end */
+} tlm_link_up;
+
+typedef struct {
+    uint32_t frame;        /* the slow frame whose step this answers */
+    exec_to_drive down;
+} tlm_link_down;
+
 /*
  * Encoders: write one whole frame into buf (at least TLM_FRAME_MAX bytes)
  * and return its length. Total functions.
@@ -81,6 +114,8 @@ typedef struct {
 size_t tlm_encode_start(uint8_t *buf, uint16_t seq, const tlm_start *s);
 size_t tlm_encode_record(uint8_t *buf, uint16_t seq, const exec_frame *f);
 size_t tlm_encode_end(uint8_t *buf, uint16_t seq, const tlm_end *e);
+size_t tlm_encode_link_up(uint8_t *buf, uint16_t seq, const tlm_link_up *u);
+size_t tlm_encode_link_down(uint8_t *buf, uint16_t seq, const tlm_link_down *d);
 
 typedef enum {
     TLM_OK = 0,
@@ -110,6 +145,8 @@ tlm_status tlm_frame_check(const uint8_t *buf, size_t avail, tlm_frame *f);
 void tlm_decode_start(const tlm_frame *f, tlm_start *s);
 void tlm_decode_record(const tlm_frame *f, exec_frame *r);
 void tlm_decode_end(const tlm_frame *f, tlm_end *e);
+void tlm_decode_link_up(const tlm_frame *f, tlm_link_up *u);
+void tlm_decode_link_down(const tlm_frame *f, tlm_link_down *d);
 
 /* A short description of a status, for messages. */
 const char *tlm_status_text(tlm_status st);

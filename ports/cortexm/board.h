@@ -29,4 +29,7 @@ extern const uint32_t board_soft_irq;
 /* Writes bytes to the machine's first UART (blocking). */
 void board_uart_write(const uint8_t *data, size_t n);
 
+/* The next byte the first UART received (0..255), or -1 when none is waiting. */
+int32_t board_uart_read(void);
+
 #endif /* UUV_BOARD_H */

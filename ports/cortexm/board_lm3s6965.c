@@ -29,6 +29,8 @@
 #define UART_LCRH_WLEN8 (3u << 5)
 #define UART_CTL_UARTEN (1u << 0)
 #define UART_CTL_TXE (1u << 8)
+#define UART_CTL_RXE (1u << 9)
+#define UART_FR_RXFE (1u << 4)
 
 #ifndef BOARD_NAME
 #error "the build must define BOARD_NAME (the QEMU machine name)"
@@ -45,7 +47,7 @@ void board_init(void) {
     UART0_IBRD = 6u; /* 115200 baud at 12.5 MHz: 6 + 50/64; QEMU ignores it */
     UART0_FBRD = 50u;
     UART0_LCRH = UART_LCRH_WLEN8;
-    UART0_CTL = UART_CTL_UARTEN | UART_CTL_TXE;
+    UART0_CTL = UART_CTL_UARTEN | UART_CTL_TXE | UART_CTL_RXE;
 }
 
 uint32_t board_systick_hz(void) { return LM3S_SYSCLK_HZ; }
@@ -58,4 +60,8 @@ void board_uart_write(const uint8_t *data, size_t n) {
         }
         UART0_DR = data[i];
     }
+}
+
+int32_t board_uart_read(void) {
+    return ((UART0_FR & UART_FR_RXFE) == 0u) ? (int32_t)(UART0_DR & 0xFFu) : -1;
 }

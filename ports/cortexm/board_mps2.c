@@ -19,7 +19,9 @@
 #define UART0_CTRL REG32(0x40004008u)
 #define UART0_BAUDDIV REG32(0x40004010u)
 #define UART_STATE_TX_FULL (1u << 0)
+#define UART_STATE_RX_FULL (1u << 1)
 #define UART_CTRL_TX_EN (1u << 0)
+#define UART_CTRL_RX_EN (1u << 1)
 
 #ifndef BOARD_NAME
 #error "the build must define BOARD_NAME (the QEMU machine name)"
@@ -35,7 +37,7 @@ void board_init(void) {
     TIMER1_VALUE = 0xFFFFFFFFu;
     TIMER1_CTRL = 1u; /* enable, no interrupt */
     UART0_BAUDDIV = 16u;
-    UART0_CTRL = UART_CTRL_TX_EN;
+    UART0_CTRL = UART_CTRL_TX_EN | UART_CTRL_RX_EN;
 }
 
 uint32_t board_systick_hz(void) { return MPS2_CLOCK_HZ; }
@@ -48,4 +50,8 @@ void board_uart_write(const uint8_t *data, size_t n) {
         }
         UART0_DATA = data[i];
     }
+}
+
+int32_t board_uart_read(void) {
+    return ((UART0_STATE & UART_STATE_RX_FULL) != 0u) ? (int32_t)(UART0_DATA & 0xFFu) : -1;
 }

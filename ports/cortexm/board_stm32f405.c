@@ -27,6 +27,8 @@
 #define USART_SR_TXE (1u << 7)
 #define USART_CR1_UE (1u << 13)
 #define USART_CR1_TE (1u << 3)
+#define USART_CR1_RE (1u << 2)
+#define USART_SR_RXNE (1u << 5)
 
 #ifndef BOARD_NAME
 #error "the build must define BOARD_NAME (the QEMU machine name)"
@@ -43,7 +45,7 @@ void board_init(void) {
     TIM2_EGR = TIM_EGR_UG; /* load the prescaler */
     TIM2_CR1 = TIM_CR1_CEN;
     USART1_BRR = 0x16Du; /* 115200 baud at 42 MHz (APB2 / 2); QEMU ignores it */
-    USART1_CR1 = USART_CR1_UE | USART_CR1_TE;
+    USART1_CR1 = USART_CR1_UE | USART_CR1_TE | USART_CR1_RE;
 }
 
 uint32_t board_systick_hz(void) { return STM32_SYSCLK_HZ; }
@@ -56,4 +58,8 @@ void board_uart_write(const uint8_t *data, size_t n) {
         }
         USART1_DR = data[i];
     }
+}
+
+int32_t board_uart_read(void) {
+    return ((USART1_SR & USART_SR_RXNE) != 0u) ? (int32_t)(USART1_DR & 0xFFu) : -1;
 }

@@ -25,6 +25,15 @@
  * to the semihosting console. Exit status, as the desk simulator's: 0 the
  * run completed, 1 it stopped on an overrun, 2 bad input; a fault exits
  * with 3 (startup.c).
+ *
+ * The multi-party image (FW_PARTY=1, uuvsim_party.elf; docs/cosimulation.md)
+ * runs the drive alone: at each slow boundary the background sends the
+ * drive's measurements over the UART (a LINK_UP frame, src/telemetry.h)
+ * to the host process that runs the slow segment, holds the fast tick's
+ * timer, and waits for its answer (LINK_DOWN), which it checks and gives
+ * the drive (exec_drive_take). A frame that fails a check ends the run
+ * with a message naming it and exit status 2. The UART carries START,
+ * the LINK_UP frames and END; no records.
  */
 #include "armv7m.h"
 #include "board.h"
@@ -68,6 +77,10 @@ static uint16_t fw_seq;
  */
 #ifndef FW_OVERRUN_TEST
 #define FW_OVERRUN_TEST 0
+#endif
+
+#ifndef FW_PARTY
+#define FW_PARTY 0
 #endif
 
 #if FW_OVERRUN_TEST
@@ -133,10 +146,67 @@ static void fw_send_start(const char *machine) {
 }
 
 static void fw_send_report(void) {
-    if (exec_report_take(&fw_exec, &fw_report)) {
+    if (!FW_PARTY && exec_report_take(&fw_exec, &fw_report)) {
         fw_send(tlm_encode_record(fw_frame, fw_seq, &fw_report));
     }
 }
+
+#if FW_PARTY
+/* ---- The multi-party link ---------------------------------------------------- */
+
+static tlm_link_up fw_up;
+static tlm_link_down fw_down;
+static uint8_t fw_rx[TLM_LINK_DOWN_FRAME];
+static uint16_t fw_rx_seq; /* the sequence number the next frame from the host must carry */
+
+/* A frame from the host failed a check: the run ends (exit status 2). */
+static void fw_link_fail(const char *why) {
+    fmt_print("uuvsim: link: frame %u from the host (the answer to slow frame %u): %s\n",
+              (unsigned)fw_rx_seq, (unsigned)fw_up.frame, why);
+    hal_exit(2);
+}
+
+/* Reads the host's answer to fw_up and checks it: framing, CRC, type, sequence, frame. */
+static void fw_link_receive(void) {
+    tlm_frame f;
+    hal_cm_link_read(fw_rx, TLM_HEADER_BYTES);
+    tlm_status st = tlm_frame_check(fw_rx, TLM_HEADER_BYTES, &f);
+    if (st == TLM_TRUNCATED) {
+        hal_cm_link_read(fw_rx + TLM_HEADER_BYTES, sizeof fw_rx - TLM_HEADER_BYTES);
+        st = tlm_frame_check(fw_rx, sizeof fw_rx, &f);
+    }
+    if (st != TLM_OK) {
+        fw_link_fail(st == TLM_TRUNCATED ? "not a LINK_DOWN frame" : tlm_status_text(st));
+    }
+    if (f.type != (uint8_t)TLM_LINK_DOWN) {
+        fw_link_fail("not a LINK_DOWN frame");
+    }
+    if (f.seq != fw_rx_seq) {
+        fw_link_fail("out of sequence (a frame was lost)");
+    }
+    tlm_decode_link_down(&f, &fw_down);
+    if (fw_down.frame != fw_up.frame) {
+        fw_link_fail("answers another slow frame");
+    }
+    fw_rx_seq++;
+}
+
+/*
+ * The slow step, by the link: the measurements of the slow frame that
+ * ended go to the host, and its results come back, the fast tick held in
+ * between (lock-step).
+ */
+static void fw_party_step(void) {
+    hal_cm_fast_hold(true);
+    fw_up.frame++;
+    drive_slow_measure(&fw_exec.drive, &fw_up.meas);
+    fw_up.speed_rpm = fw_exec.speed_report_rpm;
+    fw_send(tlm_encode_link_up(fw_frame, fw_seq, &fw_up));
+    fw_link_receive();
+    exec_drive_take(&fw_exec, &fw_down.down);
+    hal_cm_fast_hold(false);
+}
+#endif
 
 /*
  * One unit of background work: the slow step and its telemetry record.
@@ -147,8 +217,12 @@ void fw_background_step(void);
 
 __attribute__((noinline)) void fw_background_step(void) {
     FW_SPIN(FW_RATE_SLOW);
+#if FW_PARTY
+    fw_party_step();
+#else
     exec_slow_step(&fw_exec);
     fw_send_report();
+#endif
     __asm__ volatile("" ::: "memory");
 }
 

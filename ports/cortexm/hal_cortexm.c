@@ -37,6 +37,9 @@ static struct {
     bool stop_on_overrun;
 } hal_cm = {false, -1, -1, 0u, {0u, NULL, NULL, NULL}, 0u, 0u, 0u, false};
 
+/* SysTick's control while held (hal_cm_fast_hold; only the multi-party image links it). */
+static uint32_t hal_cm_held_csr;
+
 /* The console buffer, flushed per line (apart: zero-initialised, it takes no flash). */
 static char hal_cm_line[128];
 
@@ -166,6 +169,26 @@ void Default_Handler(void);
 void hal_cm_fast_stop(void) {
     SYST_CSR = 0u;
     SCB_ICSR = ICSR_PENDSTCLR;
+}
+
+void hal_cm_fast_hold(bool hold) {
+    if (hold) {
+        hal_cm_held_csr = SYST_CSR & (SYST_CSR_ENABLE | SYST_CSR_TICKINT | SYST_CSR_CLKSOURCE);
+        SYST_CSR = hal_cm_held_csr & ~SYST_CSR_ENABLE;
+    } else {
+        SYST_CSR = hal_cm_held_csr;
+    }
+}
+
+void hal_cm_link_read(uint8_t *buf, size_t n) {
+    hal_cm_init();
+    for (size_t i = 0; i < n; i++) {
+        int32_t c = board_uart_read();
+        while (c < 0) {
+            c = board_uart_read();
+        }
+        buf[i] = (uint8_t)c;
+    }
 }
 
 uint32_t hal_cm_fast_overruns(void) { return hal_cm.fast_overruns; }

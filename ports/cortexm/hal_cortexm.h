@@ -32,6 +32,16 @@ void hal_cm_stop_on_overrun(bool stop);
  */
 void hal_cm_fast_stop(void);
 
+/*
+ * Holds the fast tick's timer (hold true) and lets it go on where it was
+ * (false): the multi-party run's drive waits so for the slow segment's
+ * answer, in lock-step whatever the other side's speed.
+ */
+void hal_cm_fast_hold(bool hold);
+
+/* Reads n bytes from the first UART, waiting for each (the multi-party run's link). */
+void hal_cm_link_read(uint8_t *buf, size_t n);
+
 /* The emulator's command line (semihosting), NUL-terminated; -1 when none. */
 int32_t hal_cm_cmdline(char *buf, size_t cap);
 

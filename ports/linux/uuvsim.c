@@ -22,6 +22,7 @@
 #include "live.h"
 #include "math/umath.h"
 #include "paramset.h"
+#include "party_host.h"
 #include "sweep.h"
 #include "uuv_config.h"
 #include "view.h"
@@ -67,7 +68,7 @@ FILE *uuvsim_open_input(const char *path) {
 }
 
 /* Reads and parses the scenario; prints the error (file:line: field) on failure. */
-static bool load_scenario(const char *path, scenario *scn) {
+bool uuvsim_load_scenario(const char *path, scenario *scn) {
     FILE *f = uuvsim_open_input(path);
     if (f == NULL) {
         return false;
@@ -458,7 +459,7 @@ static void pace(run_result *r, double w0, double t_s, live_server *live) {
 
 static int run(const cli_options *o) {
     static scenario scn;
-    if (!load_scenario(o->scenario_path, &scn)) {
+    if (!uuvsim_load_scenario(o->scenario_path, &scn)) {
         return 2;
     }
     if (o->exec.duration_s <= 0.0 && scn.duration_s <= 0.0) {
@@ -633,6 +634,9 @@ int main(int argc, char **argv) {
     char err[256];
     if (argc >= 2 && (strcmp(argv[1], "sweep") == 0 || strcmp(argv[1], "sweep-merge") == 0)) {
         return sweep_main(argc, argv);
+    }
+    if (argc >= 2 && strcmp(argv[1], "party") == 0) {
+        return party_main(argc, argv);
     }
     if (!cli_parse(argc, argv, &o, err, sizeof err)) {
         fprintf(stderr, "uuvsim: %s\n", err);
