@@ -51,6 +51,8 @@ typedef struct {
     double soc0;
     double init[FMU_N_INIT];
     double u[FMU_N_INPUTS];
+    double set[FMU_N_SET];  /* the autopilots' set points: heading, depth */
+    int autopilot;          /* the holds on: bit 0 heading, bit 1 depth */
 } fmu_values;
 
 /* The simulation: what fmi2GetFMUstate saves. */
@@ -59,6 +61,12 @@ typedef struct {
     scenario scn;            /* the start inputs as events at t = 0, and the duration */
     exec_frame rec;          /* the record at the current communication point */
     double applied[FMU_N_INPUTS]; /* the inputs in force in the executive */
+    double applied_set[FMU_N_SET];
+    int applied_ap;
+    /* The steering's inputs at the last boundary (before its steering step, run_to()):
+     * inputs set there act as a scenario event at that time would, before the steering. */
+    autopilot steer_ap;
+    double steer_rudder_rad, steer_stern_rad;
     bool built;              /* e holds the run of the values set */
 } fmu_sim;
 
@@ -140,7 +148,7 @@ static bool allowed(const fmu_instance *c, unsigned allowed_modes, const char *c
 /* ---- Values ------------------------------------------------------------------ */
 
 static void values_default(fmu_values *v) {
-    *v = (fmu_values){{0}, 0.0, {0.0}, {0.0}};
+    *v = (fmu_values){{0}, 0.0, {0.0}, {0.0}, {0.0}, 0};
     fmu_var var;
     for (size_t k = 0; fmu_var_at(k, &var); k++) {
         if (var.type == FMU_ENUM) {
@@ -166,6 +174,17 @@ static fmi2Status build(fmu_instance *c) {
         ev->command = (uint16_t)k;
         s->applied[k] = v->u[k];
     }
+    /* The holds on from the start, after the fins (as in a scenario's line). */
+    for (int k = 0; k < FMU_N_SET; k++) {
+        if ((v->autopilot & (1 << k)) != 0) {
+            scenario_event *ev = &s->scn.events[s->scn.n_events++];
+            ev->t_s = 0.0;
+            ev->value = v->set[k];
+            ev->command = (uint16_t)(SCN_HEADING + k);
+        }
+        s->applied_set[k] = v->set[k];
+    }
+    s->applied_ap = v->autopilot;
     exec_config cfg;
     exec_config_default(&cfg);
     cfg.inverter = (drive_inverter)v->enums[0];
@@ -209,6 +228,11 @@ static fmi2Status set_real(fmu_instance *c, fmi2ValueReference vr, double x) {
         changed(c);
         return fmi2OK;
     }
+    if (vr >= FMU_VR_HEADING && vr < FMU_VR_HEADING + FMU_N_SET) {
+        c->val.set[vr - FMU_VR_HEADING] = x;
+        changed(c);
+        return fmi2OK;
+    }
     bool param = vr == FMU_VR_SOC0 || (vr >= FMU_VR_INIT && vr < FMU_VR_INIT + FMU_N_INIT);
     if (!param) {
         return FAIL(c, "fmi2SetReal: value reference %u is not a Real input or parameter", vr);
@@ -233,6 +257,8 @@ static fmi2Status get_real(fmu_instance *c, fmi2ValueReference vr, double *x) {
     const exec_frame *r = &c->sim.rec;
     if (vr >= FMU_VR_INPUT && vr < FMU_VR_INPUT + FMU_N_INPUTS) {
         *x = c->val.u[vr - FMU_VR_INPUT];
+    } else if (vr >= FMU_VR_HEADING && vr < FMU_VR_HEADING + FMU_N_SET) {
+        *x = c->val.set[vr - FMU_VR_HEADING];
     } else if (vr == FMU_VR_SOC0) {
         *x = c->val.soc0;
     } else if (vr >= FMU_VR_INIT && vr < FMU_VR_INIT + FMU_N_INIT) {
@@ -439,6 +465,8 @@ fmi2Status fmi2GetInteger(fmi2Component comp, const fmi2ValueReference vr[], siz
     for (size_t k = 0; k < nvr; k++) {
         if (vr[k] >= FMU_VR_INVERTER && vr[k] < FMU_VR_INVERTER + N_ENUMS) {
             value[k] = c->val.enums[vr[k] - FMU_VR_INVERTER];
+        } else if (vr[k] == FMU_VR_AUTOPILOT) {
+            value[k] = c->val.autopilot;
         } else if (vr[k] == FMU_VR_TRIP && c->mode != MODE_INSTANTIATED) {
             if (ensure_built(c) != fmi2OK) {
                 return fmi2Error;
@@ -455,10 +483,23 @@ fmi2Status fmi2GetInteger(fmi2Component comp, const fmi2ValueReference vr[], siz
 fmi2Status fmi2SetInteger(fmi2Component comp, const fmi2ValueReference vr[], size_t nvr,
                           const fmi2Integer value[]) {
     fmu_instance *c = comp;
-    if (c == NULL || !allowed(c, M_INST | M_INIT, "fmi2SetInteger")) {
+    if (c == NULL || !allowed(c, M_INST | M_INIT | M_STEP, "fmi2SetInteger")) {
         return fmi2Error;
     }
     for (size_t k = 0; k < nvr; k++) {
+        if (vr[k] == FMU_VR_AUTOPILOT) {
+            if (value[k] < 0 || value[k] > 3) {
+                return FAIL(c, "fmi2SetInteger: autopilot = %d: expected 0 (none), 1 (heading), "
+                               "2 (depth) or 3 (both)", value[k]);
+            }
+            c->val.autopilot = value[k];
+            changed(c);
+            continue;
+        }
+        if (c->mode == MODE_STEP) {
+            return FAIL(c, "fmi2SetInteger: value reference %u is a fixed parameter: set it "
+                           "before fmi2ExitInitializationMode", vr[k]);
+        }
         if (!(vr[k] >= FMU_VR_INVERTER && vr[k] < FMU_VR_INVERTER + N_ENUMS)) {
             return FAIL(c, "fmi2SetInteger: value reference %u is not an Enumeration "
                            "parameter", vr[k]);
@@ -639,7 +680,8 @@ fmi2Status fmi2GetRealOutputDerivatives(fmi2Component comp, const fmi2ValueRefer
  * boundary's tasks to its slow step, leaving the controller task released
  * with it for the next step (see the file's header).
  */
-static void run_to(exec *e, uint32_t target) {
+static void run_to(fmu_sim *s, uint32_t target) {
+    exec *e = &s->e;
     if (e->cfg.plant == EXEC_PLANT_VESSEL) {
         while (e->state == EXEC_RUNNING && e->frame < target) {
             exec_desk_step(e);
@@ -656,9 +698,61 @@ static void run_to(exec *e, uint32_t target) {
             exec_control_tick(e);
         }
         if (exec_slow_pending(e)) {
+            s->steer_ap = e->player.ap;
+            s->steer_rudder_rad = e->cmd.rudder_rad;
+            s->steer_stern_rad = e->cmd.stern_rad;
             exec_slow_step(e);
         }
     }
+}
+
+/* Whether an input differs from the one in force (bit for bit: a NaN is refused when set). */
+static bool differs(const double *a, const double *b) { return memcmp(a, b, sizeof *a) != 0; }
+
+/*
+ * The inputs set at the boundary just reached, as scenario events at that
+ * time: the steering's inputs as they were before the boundary's steering
+ * step, then the commands that changed (the fins, the shaft speed, the
+ * buoyancy; a fin under a hold ignores its input), the holds that began,
+ * ended (the fin's input takes it back) or got a new set point, and then
+ * the steering step again.
+ */
+static void apply_inputs(fmu_sim *s, const fmu_values *v) {
+    exec *e = &s->e;
+    e->player.ap = s->steer_ap;
+    e->cmd.rudder_rad = s->steer_rudder_rad;
+    e->cmd.stern_rad = s->steer_stern_rad;
+    for (int i = 0; i < FMU_N_INPUTS; i++) {
+        bool held = (i == SCN_RUDDER || i == SCN_STERN) && (v->autopilot & (1 << i)) != 0;
+        if (!held && differs(&v->u[i], &s->applied[i])) {
+            exec_command(e, (scenario_command)i, v->u[i]);
+            s->applied[i] = v->u[i];
+        }
+    }
+    for (int k = 0; k < FMU_N_SET; k++) {
+        bool on = (v->autopilot & (1 << k)) != 0;
+        bool was = (s->applied_ap & (1 << k)) != 0;
+        if (on && (!was || differs(&v->set[k], &s->applied_set[k]))) {
+            exec_command(e, (scenario_command)(SCN_HEADING + k), v->set[k]);
+        } else if (!on && was) {
+            exec_command(e, (scenario_command)k, v->u[k]); /* the rudder, the stern plane */
+            s->applied[k] = v->u[k];
+        }
+        s->applied_set[k] = v->set[k];
+    }
+    s->applied_ap = v->autopilot;
+    player_steer(&e->player, (double)e->frame * e->slow_s, e->x, e->report_s, &e->cmd);
+}
+
+static bool inputs_changed(const fmu_sim *s, const fmu_values *v) {
+    bool any = (v->autopilot != s->applied_ap);
+    for (int i = 0; i < FMU_N_INPUTS; i++) {
+        any = any || differs(&v->u[i], &s->applied[i]);
+    }
+    for (int k = 0; k < FMU_N_SET; k++) {
+        any = any || differs(&v->set[k], &s->applied_set[k]);
+    }
+    return any;
 }
 
 fmi2Status fmi2DoStep(fmi2Component comp, fmi2Real t, fmi2Real h, fmi2Boolean noSetPrior) {
@@ -687,14 +781,19 @@ fmi2Status fmi2DoStep(fmi2Component comp, fmi2Real t, fmi2Real h, fmi2Boolean no
         return FAIL(c, "fmi2DoStep: the step to %.17g s ends past the stop time %.17g s", t + h,
                     c->t0 + (double)e->frames * frame);
     }
-    for (int i = 0; i < FMU_N_INPUTS; i++) {
-        if (memcmp(&c->val.u[i], &s->applied[i], sizeof(double)) != 0) {
-            exec_command(e, (scenario_command)i, c->val.u[i]);
-            s->applied[i] = c->val.u[i];
+    if (inputs_changed(s, &c->val)) {
+        if (e->frame == 0u) {
+            /* Still at the start: the run of the values now set, from their start values. */
+            if (build(c) != fmi2OK) {
+                c->mode = MODE_ERROR;
+                return fmi2Error;
+            }
+        } else {
+            apply_inputs(s, &c->val);
         }
     }
     exec_control_tick(e); /* the last boundary's controller task, with the new command */
-    run_to(e, e->frame + (uint32_t)k);
+    run_to(s, e->frame + (uint32_t)k);
     (void)exec_report_take(e, &s->rec);
     if (e->state == EXEC_STOP_OVERRUN) {
         c->mode = MODE_ERROR;

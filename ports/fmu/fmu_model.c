@@ -92,9 +92,18 @@ static double param_start(int k) {
     return (double)v[k];
 }
 
+static const char *const set_names[FMU_N_SET] = {"heading_cmd_rad", "depth_cmd_m"};
+static const char *const set_units[FMU_N_SET] = {"rad", "m"};
+static const char *const set_text[FMU_N_SET] = {
+    "heading the autopilot holds with the rudder (while autopilot bit 0 is set)",
+    "depth the autopilot holds with the stern plane (while autopilot bit 1 is set)",
+};
+
 enum {
     K_INPUT = 0,
-    K_STATE = K_INPUT + FMU_N_INPUTS,
+    K_SET = K_INPUT + FMU_N_INPUTS,
+    K_AP = K_SET + FMU_N_SET,
+    K_STATE = K_AP + 1,
     K_DRIVE = K_STATE + VESSEL_NSTATES,
     K_TRIP = K_DRIVE + FMU_N_DRIVE,
     K_PARAM = K_TRIP + 1,
@@ -116,9 +125,17 @@ static const char *const init_names[FMU_N_INIT] = {
 bool fmu_var_at(size_t k, fmu_var *v) {
     *v = (fmu_var){0};
     int i = (int)k;
-    if (i < K_STATE) {
+    if (i < K_SET) {
         *v = (fmu_var){input_names[i], FMU_VR_INPUT + (unsigned)i, FMU_REAL, FMU_INPUT,
                        input_units[i], NULL, 0.0, input_text[i]};
+    } else if (i < K_AP) {
+        i -= K_SET;
+        *v = (fmu_var){set_names[i], FMU_VR_HEADING + (unsigned)i, FMU_REAL, FMU_INPUT,
+                       set_units[i], NULL, 0.0, set_text[i]};
+    } else if (i == K_AP) {
+        *v = (fmu_var){"autopilot", FMU_VR_AUTOPILOT, FMU_INTEGER, FMU_INPUT, NULL, NULL, 0.0,
+                       "the holds on: 0 none, 1 heading, 2 depth, 3 both; a hold that ends "
+                       "gives its fin back to its command input"};
     } else if (i < K_DRIVE) {
         i -= K_STATE;
         *v = (fmu_var){vessel_state_names[i], FMU_VR_STATE + (unsigned)i, FMU_REAL, FMU_OUTPUT,

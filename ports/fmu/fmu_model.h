@@ -18,6 +18,12 @@ enum {
     /* Inputs, the scenario's commands: 1 + scenario_command (rudder .. buoyancy). */
     FMU_VR_INPUT = 1,
     FMU_N_INPUTS = SCN_BUOYANCY + 1,
+    /* The autopilots' inputs: the set points, and which hold is on (Integer: bit 0 the
+     * heading hold on the rudder, bit 1 the depth hold on the stern plane). */
+    FMU_VR_HEADING = FMU_VR_INPUT + SCN_HEADING,
+    FMU_VR_DEPTH = FMU_VR_INPUT + SCN_DEPTH,
+    FMU_VR_AUTOPILOT = FMU_VR_INPUT + SCN_AUTOPILOT,
+    FMU_N_SET = 2,
     /* Outputs: the record's 17 vessel states, then the drive's means. */
     FMU_VR_STATE = 100,
     FMU_VR_DRIVE = FMU_VR_STATE + VESSEL_NSTATES,

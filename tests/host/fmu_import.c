@@ -284,6 +284,7 @@ typedef struct {
     fmi2GetRealTYPE *get_real;
     fmi2SetRealTYPE *set_real;
     fmi2GetIntegerTYPE *get_integer;
+    fmi2SetIntegerTYPE *set_integer;
     fmi2GetStringTYPE *get_string;
     fmi2ResetTYPE *reset;
     fmi2TerminateTYPE *terminate;
@@ -319,6 +320,7 @@ static int load(fmu_api *f, const char *so) {
     SYM(get_real, "fmi2GetReal");
     SYM(set_real, "fmi2SetReal");
     SYM(get_integer, "fmi2GetInteger");
+    SYM(set_integer, "fmi2SetInteger");
     SYM(get_string, "fmi2GetString");
     SYM(reset, "fmi2Reset");
     SYM(terminate, "fmi2Terminate");
@@ -418,7 +420,10 @@ typedef struct {
     double zz_rudder, zz_psi0;
     unsigned vr_psi;
     double bias_rpm;      /* added to every shaft speed command (0: the scenario as it is) */
+    int ap;               /* the holds the master has on (the FMU's autopilot input) */
 } player;
+
+static unsigned vr_autopilot; /* the description's "autopilot" input */
 
 static fmi2Status set1(const fmu_api *f, fmi2Component c, unsigned vr, double x) {
     return f->set_real(c, &vr, 1u, &x);
@@ -434,7 +439,22 @@ static void play(const fmu_api *f, fmi2Component c, player *p, double t) {
     while (p->next < s->n_events && s->events[p->next].t_s <= t + 1e-10) {
         const scenario_event *ev = &s->events[p->next++];
         double x = ev->value + (ev->command == SCN_N_RPM ? p->bias_rpm : 0.0);
-        (void)set1(f, c, 1u + ev->command, x);
+        int ap = p->ap;
+        if (ev->command == SCN_AUTOPILOT) {
+            /* Both holds off, their fins amidships. */
+            ap = 0;
+            (void)set1(f, c, 1u + SCN_RUDDER, 0.0);
+            (void)set1(f, c, 1u + SCN_STERN, 0.0);
+        } else {
+            /* A set point turns its hold on; a manual rudder or stern command takes it off. */
+            (void)set1(f, c, 1u + ev->command, x);
+            ap = ev->command == SCN_HEADING ? ap | 1 : ev->command == SCN_DEPTH ? ap | 2 : ap;
+            ap = ev->command == SCN_RUDDER ? ap & ~1 : ev->command == SCN_STERN ? ap & ~2 : ap;
+        }
+        if (ap != p->ap) {
+            p->ap = ap;
+            (void)f->set_integer(c, &vr_autopilot, 1u, &ap);
+        }
     }
     const scenario_zigzag *z = &s->zigzag;
     int on = z->enabled && t >= z->start_s - 1e-9 && (z->stop_s < 0.0 || t < z->stop_s);
@@ -619,12 +639,14 @@ int main(int argc, char **argv) {
           "fmi2GetVersion %s, fmi2GetTypesPlatform %s", f.version(), f.platform());
     const md_var *frame_var = var_named(&md, "slow_frame_s");
     const md_var *psi = var_named(&md, "psi_rad");
-    if (frame_var == NULL || psi == NULL) {
-        check(0, "the description has slow_frame_s and psi_rad");
+    const md_var *ap_var = var_named(&md, "autopilot");
+    if (frame_var == NULL || psi == NULL || ap_var == NULL) {
+        check(0, "the description has slow_frame_s, psi_rad and autopilot");
         printf("%d passed, %d failed\n", passed, failed);
         return 1;
     }
     const double frame = frame_var->start;
+    vr_autopilot = ap_var->vr;
     const int rows = desk.n_rows - 1;
     const double stop = (double)rows * frame;
 
@@ -639,7 +661,7 @@ int main(int argc, char **argv) {
     unsigned vr_build = var_named(&md, "build")->vr;
     (void)f.get_string(a, &vr_build, 1u, &build);
     printf("build: %s, %d records of %d outputs, %.17g s\n", build, rows + 1, m.n_cols, stop);
-    player pa = {&scn, 0u, 0.0, 0.0, psi->vr, 0.0};
+    player pa = {&scn, 0u, 0.0, 0.0, psi->vr, 0.0, 0};
     compare c1 = {0, 0, ""};
     const int one[] = {1};
     int ok = run_compare(&f, a, &pa, &m, &desk, rows, one, 1, &c1, frame);
@@ -660,7 +682,7 @@ int main(int argc, char **argv) {
         var_rows = var_rows < rows ? var_rows : rows;
     }
     a = start(&f, &md, "a2", stop);
-    player pv = {&scn, 0u, 0.0, 0.0, psi->vr, 0.0};
+    player pv = {&scn, 0u, 0.0, 0.0, psi->vr, 0.0, 0};
     compare c2 = {0, 0, ""};
     const int steps[] = {10, 5, 5, 20, 10}; /* lands on every event of the default mission */
     ok = a != NULL && run_compare(&f, a, &pv, &m, &desk, var_rows, steps, 5, &c2, frame);
@@ -676,8 +698,8 @@ int main(int argc, char **argv) {
     fmi2Component b = start(&f, &md, "b3", stop);
     check(a != NULL && b != NULL && a != b, "two instances in one process");
     if (a != NULL && b != NULL) {
-        player p1 = {&scn, 0u, 0.0, 0.0, psi->vr, 0.0};
-        player p2 = {&scn, 0u, 0.0, 0.0, psi->vr, 150.0};
+        player p1 = {&scn, 0u, 0.0, 0.0, psi->vr, 0.0, 0};
+        player p2 = {&scn, 0u, 0.0, 0.0, psi->vr, 150.0, 0};
         compare ca = {0, 0, ""};
         compare cb = {0, 0, ""};
         play(&f, a, &p1, 0.0);
@@ -719,7 +741,7 @@ int main(int argc, char **argv) {
         /* 5. fmi2Reset, then the start of the run again. */
         int ok5 = f.reset(a) == fmi2OK && f.setup(a, fmi2False, 0.0, 0.0, fmi2True, stop) ==
                   fmi2OK && f.enter_init(a) == fmi2OK;
-        player pr = {&scn, 0u, 0.0, 0.0, psi->vr, 0.0};
+        player pr = {&scn, 0u, 0.0, 0.0, psi->vr, 0.0, 0};
         compare cr = {0, 0, ""};
         ok5 = ok5 && run_compare(&f, a, &pr, &m, &desk, 20, one, 1, &cr, frame);
         check(ok5 && cr.bad == 0, "after fmi2Reset: %d records, %d differ %s", cr.rows, cr.bad,

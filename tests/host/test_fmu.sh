@@ -58,6 +58,23 @@ else
     bad "fmu_import exited $status: $counts"
 fi
 
+# The autopilots' inputs: the heading and depth steps of scenarios/autopilot_step.scn (60 s),
+# the master setting heading_cmd_rad, depth_cmd_m and autopilot at the scenario's times.
+ap_scn=scenarios/autopilot_step.scn
+"$uuvsim" --scenario "$ap_scn" --duration 60 --csv "$tmp/desk_ap.csv" --quiet || bad "the desk run of $ap_scn"
+"$importer" "$tmp/fmu" "$ap_scn" "$tmp/desk_ap.csv" > "$tmp/import_ap.log" 2>&1
+status=$?
+if [ "$status" -eq 0 ]; then
+    ok "the autopilot inputs ($ap_scn, 60 s): $(grep 'steps of one slow frame' "$tmp/import_ap.log" | sed 's/^ok  : //')"
+else
+    bad "the autopilot inputs ($ap_scn): $(grep FAIL "$tmp/import_ap.log" | head -n 3)"
+fi
+if awk -F, 'NR > 1 && $1 + 0 >= 59.9 { found = 1; if ($10 + 0 < 5 || $13 + 0 < 0.5) exit 1 } END { exit !found }' "$tmp/desk_ap.csv"; then
+    ok "the desk run of $ap_scn reaches the new depth and heading (z > 5 m, psi > 0.5 rad at 60 s)"
+else
+    bad "the desk run of $ap_scn: the autopilots did not act (the comparison above would prove nothing)"
+fi
+
 # Rebuilt from its sources (as on another platform): the first 20 s again.
 if make -s -C "$tmp/fmu/sources" CFLAGS=-O1 SO="$tmp/rebuilt.so" > "$tmp/make.log" 2>&1; then
     ok "the library rebuilds from sources/ (make -C sources)"
