@@ -3,7 +3,7 @@
 # process (uuvsim party), connected through the firmware's UART.
 #
 #   make qemu-party [MACHINE=mps2-an386] [NUM=fixed|float] [SCENARIO=scenarios/default.scn]
-#                   [DURATION=s] [OUT=out/party-MACHINE-NUM] [SHIFT=3]
+#                   [DURATION=s] [OUT=out/party-MACHINE-NUM] [SHIFT=2]
 #       OUT/telemetry.csv (the desk's --csv, byte for byte), OUT/console.txt
 #
 # The drive's image, uuvsim_party.elf beside each variant's uuvsim.elf, is
@@ -27,6 +27,10 @@ endef
 
 $(foreach v,$(FW_VARIANTS),$(eval $(call party_image,$(v))))
 
+# make test's rows (tools/run-tests.sh, tests/host/test_party.sh): both builds on the M4.
+test-run: $(BUILD)/cortexm-mps2-an386-fixed/uuvsim_party.elf \
+          $(BUILD)/cortexm-mps2-an386-float/uuvsim_party.elf
+
 QEMU_PARTY_MACHINE = $(or $(MACHINE),mps2-an386)
 QEMU_PARTY_NUM = $(or $(NUM),fixed)
 QEMU_PARTY_VARIANT = $(QEMU_PARTY_MACHINE)-$(QEMU_PARTY_NUM)
@@ -39,4 +43,4 @@ qemu-party: $(if $(filter $(QEMU_PARTY_VARIANT),$(FW_VARIANTS)),$(QEMU_PARTY_ELF
 	    '$(QEMU_PARTY_VARIANT)'; one of: $(FW_VARIANTS)))
 	@sh tools/qemu-party.sh $(QEMU_PARTY_MACHINE) $(QEMU_PARTY_ELF) \
 	    $(BUILD)/linux-$(QEMU_PARTY_NUM)/uuvsim $(or $(SCENARIO),scenarios/default.scn) \
-	    "$(DURATION)" $(or $(OUT),out/party-$(QEMU_PARTY_VARIANT)) $(or $(SHIFT),3)
+	    "$(DURATION)" $(or $(OUT),out/party-$(QEMU_PARTY_VARIANT)) $(or $(SHIFT),2)

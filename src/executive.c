@@ -48,8 +48,7 @@ static void apply_commands(exec *e, double t) {
     for (player_event ev = player_next(&e->player, t, e->x, &e->cmd); ev != PLAYER_IDLE;
          ev = player_next(&e->player, t, e->x, &e->cmd)) {
         if (ev == PLAYER_FAULT && e->cfg.plant == EXEC_PLANT_FULL && e->drive_ready) {
-            e->down.faults = e->player.faults;
-            e->down.faults_new = true;
+            e->down.faults = &e->player.faults;
         }
     }
     player_steer(&e->player, t, e->x, e->report_s, &e->cmd);
@@ -510,7 +509,7 @@ void exec_slow_model(exec *e) {
         return;
     }
     const exec_counters kept = e->count; /* restored by the guard below */
-    e->down.faults_new = false;
+    e->down.faults = NULL;
     if (e->cfg.plant == EXEC_PLANT_FULL) {
         battery_frame(e);
         /* The shaft speed over the frame just measured: its start, and the
@@ -559,8 +558,8 @@ void exec_drive_take(exec *e, const exec_to_drive *d) {
     if (d->trip != (uint8_t)DRIVE_TRIP_NONE) {
         drive_trip_request(&e->drive, (drive_trip)d->trip);
     }
-    if (d->faults_new) {
-        drive_fault_request(&e->drive, &d->faults);
+    if (d->faults != NULL) {
+        drive_fault_request(&e->drive, d->faults);
     }
     if (d->state != (uint8_t)EXEC_RUNNING) {
         exec_end(e, (exec_state)d->state);

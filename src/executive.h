@@ -146,8 +146,8 @@ typedef struct {
  */
 typedef struct {
     drive_battery bat_next; /* the battery companion for the next slow frame */
-    drive_faults faults;    /* the fault set, when faults_new */
-    bool faults_new;        /* a fault command was applied at this boundary */
+    const drive_faults *faults; /* the fault set, when a fault command was applied at this
+                                 * boundary (the player's); NULL: the faults stay */
     uint8_t trip;           /* drive_trip the protection requests (DRIVE_TRIP_NONE: none) */
     uint8_t state;          /* exec_state after the step: the run goes on or ends */
 } exec_to_drive;

@@ -240,16 +240,18 @@ size_t tlm_encode_link_up(uint8_t *buf, uint16_t seq, const tlm_link_up *u) {
 size_t tlm_encode_link_down(uint8_t *buf, uint16_t seq, const tlm_link_down *d) {
     tlm_writer w = frame_begin(buf, TLM_LINK_DOWN, TLM_LINK_DOWN_PAYLOAD, seq);
     const exec_to_drive *x = &d->down;
+    const drive_faults none = {0};
+    const drive_faults *f = (x->faults != NULL) ? x->faults : &none;
     put_u32(&w, d->frame);
     put_f64(&w, x->bat_next.g_s);
     put_f64(&w, x->bat_next.b_a);
-    put_f64(&w, x->faults.dc_cap_frac);
-    put_f64(&w, x->faults.current_offset_a);
-    put_f64(&w, x->faults.load_factor);
-    put_u8(&w, x->faults.switch_open);
-    put_u8(&w, x->faults.leg_short);
-    put_u8(&w, x->faults.phase_open);
-    put_u8(&w, x->faults_new ? 1u : 0u);
+    put_f64(&w, f->dc_cap_frac);
+    put_f64(&w, f->current_offset_a);
+    put_f64(&w, f->load_factor);
+    put_u8(&w, f->switch_open);
+    put_u8(&w, f->leg_short);
+    put_u8(&w, f->phase_open);
+    put_u8(&w, x->faults != NULL ? 1u : 0u);
     put_u8(&w, x->trip);
     put_u8(&w, x->state);
     put_u16(&w, 0u); /* reserved */
@@ -363,13 +365,13 @@ void tlm_decode_link_down(const tlm_frame *f, tlm_link_down *d) {
     d->frame = get_u32(&r);
     x->bat_next.g_s = get_f64(&r);
     x->bat_next.b_a = get_f64(&r);
-    x->faults.dc_cap_frac = get_f64(&r);
-    x->faults.current_offset_a = get_f64(&r);
-    x->faults.load_factor = get_f64(&r);
-    x->faults.switch_open = (uint8_t)get_u8(&r);
-    x->faults.leg_short = (uint8_t)get_u8(&r);
-    x->faults.phase_open = (uint8_t)get_u8(&r);
-    x->faults_new = get_u8(&r) != 0u;
+    d->faults.dc_cap_frac = get_f64(&r);
+    d->faults.current_offset_a = get_f64(&r);
+    d->faults.load_factor = get_f64(&r);
+    d->faults.switch_open = (uint8_t)get_u8(&r);
+    d->faults.leg_short = (uint8_t)get_u8(&r);
+    d->faults.phase_open = (uint8_t)get_u8(&r);
+    x->faults = (get_u8(&r) != 0u) ? &d->faults : NULL;
     x->trip = (uint8_t)get_u8(&r);
     x->state = (uint8_t)get_u8(&r);
 }

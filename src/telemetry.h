@@ -31,7 +31,8 @@
  *   TLM_LINK_DOWN  k (u32), then exec_to_drive: the battery companion g, b,
  *                  the faults' dc_cap_frac, current_offset_a, load_factor
  *                  (5 doubles), switch_open, leg_short, phase_open,
- *                  faults_new, trip, state (u8 each) + 2 reserved.
+ *                  faults new (1: apply this fault set), trip, state (u8
+ *                  each) + 2 reserved.
  */
 #ifndef UUV_TELEMETRY_H
 #define UUV_TELEMETRY_H
@@ -104,7 +105,8 @@ typedef struct {
 
 typedef struct {
     uint32_t frame;        /* the slow frame whose step this answers */
-    exec_to_drive down;
+    exec_to_drive down;    /* decoded: down.faults points at faults when new */
+    drive_faults faults;
 } tlm_link_down;
 
 /*

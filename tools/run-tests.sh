@@ -134,6 +134,15 @@ done
 run "qemu mps2-an386-fixed overruns, bad input" pass sh tools/qemu-overrun-test.sh \
     mps2-an386 "$BUILD/cortexm-mps2-an386-fixed/uuvsim_overrun.elf" "$BUILD/linux-fixed/uuvsim" \
     "$BUILD/qemu-test/overrun"
+# The multi-party run (docs/cosimulation.md): the drive under QEMU, the slow
+# segment in uuvsim party, against the desk and the all-firmware run; a
+# corrupted and a lost frame stop it.
+for num in fixed float; do
+    run "qemu mps2-an386-$num multi-party run" pass sh tests/host/test_party.sh mps2-an386 \
+        "$BUILD/cortexm-mps2-an386-$num/uuvsim_party.elf" \
+        "$BUILD/cortexm-mps2-an386-$num/uuvsim.elf" "$BUILD/linux-$num/uuvsim" \
+        "${FW_DECODE:-$BUILD/tools/uuvsim-decode}" "$BUILD/qemu-test/party-$num"
+done
 
 echo "logs in $logs/"
 echo "$total_pass passed, $total_fail failed"

@@ -306,7 +306,9 @@ static int party_run(party_link *l, exec *e, FILE *csv, const party_options *o) 
         if (exec_report_take(e, &r) && csv != NULL) {
             csv_row(csv, &r, true);
         }
-        tlm_link_down d = {up.frame, e->down};
+        tlm_link_down d;
+        d.frame = up.frame;
+        d.down = e->down; /* its faults, when new, are the player's */
         if (!party_send(l, &d, o)) {
             return 2;
         }
