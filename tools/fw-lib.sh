@@ -1,9 +1,33 @@
-# Shell functions shared by tools/qemu-bench.sh and tools/qemu-sim-test.sh
-# (sourced, not run): an image's footprint, its worst-case stack, values
-# from a run's summary.json, and runs at decreasing -icount shifts.
-# Needs: FW_DECODE, FW_PLUGIN, FW_STACK (the host tools) in the environment.
+# Shell functions shared by tools/qemu-bench.sh, tools/qemu-sim-test.sh,
+# tools/qemu-run.sh and tools/qemu-party.sh (sourced, not run): a run's
+# argument checks, an image's footprint, its worst-case stack, values from
+# a run's summary.json, and runs at decreasing -icount shifts.
+# Needs: FW_DECODE, FW_PLUGIN, FW_STACK (the host tools) in the environment
+# (the argument checks need none).
 
 ARM_SIZE=${ARM_SIZE:-arm-none-eabi-size}
+
+# fw_run_args NAME SCENARIO DURATION IMAGE SHIFT: checks a QEMU run's
+# arguments (a message starting with NAME and exit 2 when one is wrong)
+# and sets fw_limit, QEMU's time limit [s]: a run's wall time grows with
+# its simulated time (some 10 to 25 s per simulated second here, whatever
+# the shift), so it allows ample room; QEMU_TIMEOUT overrides it.
+fw_run_args() {
+    case "$2$3" in
+        *,* | *' '* | *'	'*)
+            echo "$1: the scenario path and duration may not hold commas or spaces" \
+                 "(QEMU's option syntax)" >&2
+            exit 2 ;;
+    esac
+    [ -f "$2" ] || { echo "$1: $2: no such file" >&2; exit 2; }
+    [ -f "$4" ] || { echo "$1: $4: no such image (make firmware)" >&2; exit 2; }
+    case "$5" in
+        [0-9] | 10) ;;
+        *) echo "$1: SHIFT must be 0..10, got '$5'" >&2; exit 2 ;;
+    esac
+    fw_sim_s=${3:-$(awk '$1 == "duration" { print $2; exit }' "$2")}
+    fw_limit=${QEMU_TIMEOUT:-$(awk -v d="${fw_sim_s:-1}" 'BEGIN { printf "%d", 120 + 60 * d }')}
+}
 ARM_OBJDUMP=${ARM_OBJDUMP:-arm-none-eabi-objdump}
 
 # Bytes each exception entry may push: 8 words, or 26 with the FPU's

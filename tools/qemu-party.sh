@@ -22,19 +22,10 @@ fi
 machine=$1; elf=$2; uuvsim=$3; scenario=$4; duration=$5; out=$6; shift_n=$7
 shift 7
 
-case "$scenario$duration" in
-    *,* | *' '* | *'	'*)
-        echo "qemu-party: the scenario path and duration may not hold commas or spaces" \
-             "(QEMU's option syntax)" >&2
-        exit 2 ;;
-esac
-[ -f "$scenario" ] || { echo "qemu-party: $scenario: no such file" >&2; exit 2; }
-[ -f "$elf" ] || { echo "qemu-party: $elf: no such image (make qemu-party builds it)" >&2; exit 2; }
+. "$(dirname "$0")/fw-lib.sh"
+fw_run_args qemu-party "$scenario" "$duration" "$elf" "$shift_n"
+limit=$fw_limit
 [ -x "$uuvsim" ] || { echo "qemu-party: $uuvsim: no such program" >&2; exit 2; }
-case "$shift_n" in
-    [0-9] | 10) ;;
-    *) echo "qemu-party: SHIFT must be 0..10, got '$shift_n'" >&2; exit 2 ;;
-esac
 
 mkdir -p "$out" || exit 2
 rm -f "$out/telemetry.csv" "$out/console.txt" "$out/host.txt"
@@ -48,10 +39,6 @@ cleanup() {
 }
 trap cleanup EXIT
 trap 'exit 130' INT TERM HUP
-
-sim_s=${duration:-$(awk '$1 == "duration" { print $2; exit }' "$scenario")}
-sim_s=${sim_s:-1}
-limit=${QEMU_TIMEOUT:-$(awk -v d="$sim_s" 'BEGIN { printf "%d", 120 + 60 * d }')}
 
 dur_opt=""
 [ -n "$duration" ] && dur_opt="--duration $duration"

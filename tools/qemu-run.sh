@@ -22,28 +22,13 @@ fi
 machine=$1; elf=$2; scenario=$3; duration=$4; out=$5; shift_n=$6; decode=$7; plugin=${8:-}
 here=$(dirname "$0")
 
-case "$scenario$duration" in
-    *,* | *' '* | *'	'*)
-        echo "qemu-run: the scenario path and duration may not hold commas or spaces" \
-             "(QEMU's option syntax)" >&2
-        exit 2 ;;
-esac
-[ -f "$scenario" ] || { echo "qemu-run: $scenario: no such file" >&2; exit 2; }
-[ -f "$elf" ] || { echo "qemu-run: $elf: no such image (make firmware)" >&2; exit 2; }
-case "$shift_n" in
-    [0-9] | 10) ;;
-    *) echo "qemu-run: SHIFT must be 0..10, got '$shift_n'" >&2; exit 2 ;;
-esac
+. "$here/fw-lib.sh"
+fw_run_args qemu-run "$scenario" "$duration" "$elf" "$shift_n"
+limit=$fw_limit
 
 mkdir -p "$out" || exit 2
 rm -f "$out/telemetry.bin" "$out/telemetry.csv" "$out/summary.json" "$out/console.txt" \
       "$out/insn.txt"
-
-# A run's wall time grows with its simulated time (some 10 to 25 s per
-# simulated second here, whatever the shift): allow ample room.
-sim_s=${duration:-$(awk '$1 == "duration" { print $2; exit }' "$scenario")}
-sim_s=${sim_s:-1}
-limit=${QEMU_TIMEOUT:-$(awk -v d="$sim_s" 'BEGIN { printf "%d", 120 + 60 * d }')}
 
 args="arg=uuvsim,arg=scenario=$scenario"
 [ -n "$duration" ] && args="$args,arg=duration=$duration"
