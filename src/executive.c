@@ -26,7 +26,6 @@ void exec_config_default(exec_config *cfg) {
     cfg->propulsion = VESSEL_PROP_PAPER;
     cfg->inverter = DRIVE_INVERTER_SWITCHING;
     cfg->modulator = DRIVE_MODULATOR_SUBSTEP;
-    cfg->dead_time_ns = 0u;
     cfg->down = COUPLE_ZOH;
     cfg->up = COUPLE_AVG;
     cfg->soc0 = 1.0;
@@ -136,7 +135,7 @@ static exec_status init_drive(exec *e) {
     drive_config dc;
     dc.inverter = c->inverter;
     dc.modulator = c->modulator;
-    dc.dead_time_ns = c->dead_time_ns;
+    dc.dead_time_ns = c->params->pwm->dead_time_ns; /* the set's (sub-step only) */
     dc.down = c->down;
     dc.up = c->up;
     dc.fast_ns = c->fast_ns;

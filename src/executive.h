@@ -71,7 +71,6 @@ typedef struct {
     vessel_propulsion propulsion;
     drive_inverter inverter;
     drive_modulator modulator; /* the switching inverter's: sub-step (default) or sampled */
-    uint32_t dead_time_ns; /* [ns] the inverter legs' dead time (sub-step only); 0: ideal */
     coupling_down down;
     coupling_up up;
     bool single_rate;

@@ -296,7 +296,7 @@ static void frame_jump(const double *ia, uint32_t n, uint32_t frame, double *jum
  * this build): its fundamental against m Vdc / 2, in per cent.
  */
 static double van_error_pct(uint32_t step_ns, bool substep, double m) {
-    static const pwm_params sampled = {5000.0, PWM_EDGES_SAMPLED, 0u, 0u};
+    static const pwm_params sampled = {5000.0, PWM_EDGES_SAMPLED, 0u, 0u, 0u};
     const uint32_t inc = wt_phase_inc_q16(50 * 65536, step_ns);
     const uint32_t frame = 100000u / step_ns;
     const uint32_t steps = 20000000u / step_ns;

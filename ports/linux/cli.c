@@ -34,10 +34,10 @@ const char cli_usage[] =
     "                           leg's on-time located inside the step, the step's\n"
     "                           mean pole voltage applied; sampled: the switch\n"
     "                           states at the step's start held over the step\n"
-    "  --dead-time T            both switches of a leg off for T at every edge (the\n"
-    "                           pole then follows the current's diode), with its\n"
-    "                           unit, at most 10us; switching inverter, substep\n"
-    "                           modulator; default none\n"
+    "  --dead-time T            T with its unit: --set pwm.dead_time=T (after the\n"
+    "                           other --set options): both switches of a leg off\n"
+    "                           for T at every edge; switching inverter, substep\n"
+    "                           modulator; default the set's (none)\n"
     "  --single-rate            every segment at 2 us (the reference)\n"
     "  --deep-water             no free surface (the reference vessel of the vectors:\n"
     "                           buoyancy B wherever the vehicle is)\n"
@@ -389,6 +389,15 @@ bool cli_parse(int argc, char **argv, cli_options *o, char *err, size_t err_len)
             return false;
         }
     }
+    /* --dead-time is an override of the set's key, the last one. */
+    if (o->dead_time_ns != 0u) {
+        if (o->n_sets >= CLI_MAX_SETS) {
+            return fail(err, err_len, "option --set: at most %d overrides", CLI_MAX_SETS - 1);
+        }
+        snprintf(o->dead_time_set, sizeof o->dead_time_set, "pwm.dead_time=%llu ns",
+                 (unsigned long long)o->dead_time_ns);
+        o->sets[o->n_sets++] = o->dead_time_set;
+    }
     if (o->action == CLI_PARAMS) {
         return true;
     }
@@ -403,18 +412,6 @@ bool cli_parse(int argc, char **argv, cli_options *o, char *err, size_t err_len)
     }
     if (o->view) {
         o->realtime = true;
-    }
-    if (o->dead_time_ns != 0u) {
-        if (o->dead_time_ns > 10000u) {
-            return fail(err, err_len, "option --dead-time: expected at most 10us, got %.9gus",
-                        1e-3 * (double)o->dead_time_ns);
-        }
-        if (o->exec.inverter != DRIVE_INVERTER_SWITCHING ||
-            o->exec.modulator != DRIVE_MODULATOR_SUBSTEP) {
-            return fail(err, err_len, "option --dead-time: needs --inverter switching and "
-                                      "--modulator substep");
-        }
-        o->exec.dead_time_ns = (uint32_t)o->dead_time_ns;
     }
     if (o->trace_path != NULL) {
         if (o->exec.plant != EXEC_PLANT_FULL) {

@@ -33,7 +33,8 @@ typedef struct {
     uint64_t motor_frame_ns;    /* --motor-frame; 0: the default (exec_config_default) */
     uint64_t control_frame_ns;  /* --control-frame; 0: the default */
     uint64_t slow_frame_ns;     /* --slow-frame; 0: the default */
-    uint64_t dead_time_ns;      /* --dead-time; 0: none */
+    uint64_t dead_time_ns;      /* --dead-time; 0: not given (the set's pwm.dead_time) */
+    char dead_time_set[48];     /* --dead-time as the override "pwm.dead_time=N ns" */
     bool realtime;
     bool view;                  /* --view: the live view (implies --realtime) */
     double view_port;           /* --view-port: its port on 127.0.0.1 (0: any free one) */

@@ -167,6 +167,9 @@ static const param_key keys[] = {
       "initial carrier phase (2^32 = one turn; 0 = valley)"),
     E("pwm.ref_phase0", SEC_PWM, pwm_params, ref_phase0, K_U32, "-", 0.0, 4294967295.0, 1.0,
       "initial reference phase of leg a (2^32 = one turn)"),
+    E("pwm.dead_time", SEC_PWM, pwm_params, dead_time_ns, K_U32, "ns", 0.0, 10000.0, 1.0,
+      "both switches of a leg off at every edge (switching inverter, sub-step edges; "
+      "docs/drive_power.md); 0 = ideal switches, the seed paper's"),
     MOT("rs", rs_ohm, K_F64, "ohm", 1e-4, 100.0, "stator resistance, star equivalent; Simscape presets"),
     MOT("rr", rr_ohm, K_F64, "ohm", 1e-4, 100.0, "rotor resistance referred to the stator"),
     MOT("lls", lls_h, K_F64, "H", 1e-6, 1.0, "stator leakage inductance"),
@@ -287,7 +290,8 @@ const char *params_label(const param_store *s) { return s->label; }
 
 static void range_text(const param_key *p, char *buf, size_t len) {
     if (p->kind == K_U32) {
-        snprintf(buf, len, "a whole number in [%.10g, %.10g]", p->min, p->max);
+        snprintf(buf, len, "a whole number in [%.10g, %.10g]%s%s", p->min, p->max,
+                 strcmp(p->unit, "-") != 0 ? " " : "", strcmp(p->unit, "-") != 0 ? p->unit : "");
     } else {
         snprintf(buf, len, "%s in [%.10g, %.10g] %s", p->kind == K_TABLE ? "values" : "a value",
                  p->min, p->max, p->unit);
@@ -800,6 +804,16 @@ bool params_load(param_store *s, const char *path, const char *const *sets, int 
                                  i == 0 ? ", overrides " : " ", sets[i]);
     }
     return true;
+}
+
+bool params_check_run(const param_store *s, bool dead_time_modelled) {
+    if (s->pwm.dead_time_ns == 0u || dead_time_modelled) {
+        return true;
+    }
+    return blame(s, set_where, NAMES("pwm.dead_time"),
+                 "a dead time of %u ns needs the switching inverter with sub-step edges "
+                 "(--inverter switching --modulator substep, the defaults); for another "
+                 "inverter or modulator give --set pwm.dead_time=0", s->pwm.dead_time_ns);
 }
 
 /* ---- Printing ------------------------------------------------------------ */

@@ -43,6 +43,15 @@ void params_free(param_store *s);
  */
 bool params_load(param_store *s, const char *path, const char *const *sets, int n_sets);
 
+/*
+ * Checks the loaded set against the run's inverter: a dead time
+ * (pwm.dead_time) is modelled only by the switching inverter with sub-step
+ * edges, and a set that gives one to another inverter is refused (message
+ * as above, false) rather than run without it. dead_time_modelled: the run
+ * has no drive, or that inverter.
+ */
+bool params_check_run(const param_store *s, bool dead_time_modelled);
+
 /* The set, for exec_config.params. */
 const uuv_params *params_set(const param_store *s);
 

@@ -185,7 +185,7 @@ static void print_json(FILE *f_out, const run_result *r) {
            plant_names[e->cfg.plant], law_names[e->cfg.propulsion],
            inverter_names[e->cfg.inverter]);
     fprintf(f_out, "  \"modulator\": \"%s\",\n  \"dead_time_s\": %.9g,\n",
-            modulator_names[e->cfg.modulator], 1e-9 * (double)e->cfg.dead_time_ns);
+            modulator_names[e->cfg.modulator], 1e-9 * (double)e->cfg.params->pwm->dead_time_ns);
     fprintf(f_out, "  \"params\": \"");
     for (const char *c = r->params; *c != '\0'; c++) {
         fprintf(f_out, (*c == '"' || *c == '\\') ? "\\%c" : "%c", *c);
@@ -272,8 +272,8 @@ static void print_text(const run_result *r) {
         printf(", inverter %s", inverter_names[e->cfg.inverter]);
         if (e->cfg.inverter == DRIVE_INVERTER_SWITCHING) {
             printf(" (modulator %s", modulator_names[e->cfg.modulator]);
-            if (e->cfg.dead_time_ns != 0u) {
-                printf(", dead time %.9g us", 1e-3 * (double)e->cfg.dead_time_ns);
+            if (e->cfg.params->pwm->dead_time_ns != 0u) {
+                printf(", dead time %.9g us", 1e-3 * (double)e->cfg.params->pwm->dead_time_ns);
             }
             printf(")");
         }
@@ -481,7 +481,10 @@ static int run(const cli_options *o) {
     }
     static param_store *set;
     set = params_new();
-    if (set == NULL || !params_load(set, o->params_path, o->sets, o->n_sets)) {
+    if (set == NULL || !params_load(set, o->params_path, o->sets, o->n_sets) ||
+        !params_check_run(set, o->exec.plant != EXEC_PLANT_FULL ||
+                                   (o->exec.inverter == DRIVE_INVERTER_SWITCHING &&
+                                    o->exec.modulator == DRIVE_MODULATOR_SUBSTEP))) {
         return 2;
     }
     exec_config cfg = o->exec;

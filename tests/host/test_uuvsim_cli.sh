@@ -429,10 +429,11 @@ expect_error "error: an angle out of range in degrees is reported in degrees" \
     "$uuvsim" --scenario "$tmp/deg.scn"
 expect_error "error: bad --modulator value" "option --modulator: expected one of substep|sampled" \
     "$uuvsim" --modulator held --scenario scenarios/bench_2s.scn
-expect_error "error: a dead time over 10 us" "option --dead-time: expected at most 10us, got 12us" \
+expect_error "error: a dead time over 10 us (--dead-time is the set's key pwm.dead_time)" \
+    "set: pwm.dead_time: expected a whole number in \[0, 10000\] ns, got 12000 \(out of range\)" \
     "$uuvsim" --dead-time 12us --scenario scenarios/bench_2s.scn
 expect_error "error: a dead time with the sampled modulator" \
-    "option --dead-time: needs --inverter switching and --modulator substep" \
+    "set: pwm.dead_time: a dead time of 1000 ns needs the switching inverter with sub-step edges" \
     "$uuvsim" --dead-time 1us --modulator sampled --scenario scenarios/bench_2s.scn
 
 expect_error "error: a positional argument is reported as such, with --scenario suggested" \

@@ -464,7 +464,7 @@ static void test_rt_against_exact(int fixed) {
  */
 static double rt_period(int fixed, int substep, double m, const int32_t *neg,
                         uint32_t dead_ns, int64_t sum[3]) {
-    static const pwm_params sampled = {5000.0, PWM_EDGES_SAMPLED, 0u, 0u};
+    static const pwm_params sampled = {5000.0, PWM_EDGES_SAMPLED, 0u, 0u, 0u};
     const uint32_t inc = inc_hz(50.0);
     const uint32_t n = 50u;
     pwm_rt rt;
@@ -556,7 +556,7 @@ static void test_rt_dead_time(int fixed) {
     }
     /* The set-up refuses a dead time over 10 us or over 8 steps. */
     pwm_rt rt;
-    static const pwm_params sampled = {5000.0, PWM_EDGES_SAMPLED, 0u, 0u};
+    static const pwm_params sampled = {5000.0, PWM_EDGES_SAMPLED, 0u, 0u, 0u};
     UT_EQ_INT(pwm_rt_init(&rt, &sampled, STEP_NS), PWM_OK);
     UT_EQ_INT(pwm_rt_dead_time(&rt, 10001u, STEP_NS), PWM_ERR_STEP);
     UT_EQ_INT(pwm_rt_dead_time(&rt, 9000u, 1000u), PWM_ERR_STEP);
@@ -576,7 +576,7 @@ static void test_rt_duty_exact(void) {
     int32_t worst = 0;
     for (unsigned j = 0u; j < 2u; j++) {
         pwm_rt rt;
-        static const pwm_params sampled = {5000.0, PWM_EDGES_SAMPLED, 0u, 0u};
+        static const pwm_params sampled = {5000.0, PWM_EDGES_SAMPLED, 0u, 0u, 0u};
         (void)pwm_rt_init(&rt, &sampled, j == 0u ? 2000u : 5000u);
         const int32_t de = (int32_t)(incs[j] >> 7) + 4000;
         for (int32_t k = 1; k < 1000; k++) {

@@ -17,7 +17,7 @@
 
 void suite_pwm_paths(void);
 
-static const pwm_params averaged = {5000.0, PWM_AVERAGED, 0u, 0u};
+static const pwm_params averaged = {5000.0, PWM_AVERAGED, 0u, 0u, 0u};
 
 static void test_init(void) {
     UT_TEST("init: the averaged modulator has no carrier to check, so any step up to 1 ms "

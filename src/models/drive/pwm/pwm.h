@@ -78,6 +78,8 @@ typedef struct {
     pwm_edges edges;          /* edge mode, or PWM_AVERAGED */
     uint32_t carrier_phase0;  /* initial carrier phase (2^32 = one turn); 0 = valley */
     uint32_t ref_phase0;      /* initial reference phase of leg a (2^32 = one turn) */
+    uint32_t dead_time_ns;    /* [ns] both switches of a leg off at every edge (the switching
+                               * inverter's sub-step edges, pwm_rt.h); 0: ideal switches */
 } pwm_params;
 
 typedef enum {
@@ -91,7 +93,7 @@ typedef enum {
 /* Duty value of a whole step in the fixed twin (Q15 with 1.0 representable). */
 #define PWM_DUTY_ONE_Q 32768
 
-/* Default parameters: 5 kHz carrier, interpolated edges, both phases at 0. */
+/* Default parameters: 5 kHz carrier, interpolated edges, both phases at 0, no dead time. */
 extern const pwm_params pwm_params_default;
 
 /* The same with sampled edges, as the real-time step (pwm_rt.h) takes them. */

@@ -12,6 +12,7 @@ const pwm_params pwm_params_default = {
     .edges = PWM_EDGES_INTERPOLATED,
     .carrier_phase0 = 0u,
     .ref_phase0 = 0u,
+    .dead_time_ns = 0u, /* the paper's ideal switches */
 };
 
 const pwm_params pwm_params_sampled = {
@@ -19,4 +20,5 @@ const pwm_params pwm_params_sampled = {
     .edges = PWM_EDGES_SAMPLED,
     .carrier_phase0 = 0u,
     .ref_phase0 = 0u,
+    .dead_time_ns = 0u, /* the paper's ideal switches */
 };
