@@ -1,8 +1,9 @@
 # Hardening: static analysis, proof, fuzzing and coverage (docs/reliability.md).
 #
 #   make lint       cppcheck with the MISRA C:2012 addon over src/, then
-#                   clang-tidy; fails on any finding that docs/misra.md does
-#                   not list as a deviation
+#                   clang-tidy; fails on any finding that
+#                   tools/misra-deviations.txt does not list as a deviation
+#                   and on a row whose count is not the one measured
 #   make prove      Frama-C Eva over src/fixedpoint: fails on any alarm
 #   make fuzz       a short campaign of every libFuzzer harness (FUZZ_SECONDS each)
 #   make fuzz-replay  every seed in tests/fuzz/corpus_*/ through its harness
