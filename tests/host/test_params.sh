@@ -93,6 +93,10 @@ d0=$(awk -v s="$(jget soc "$tmp/b0.json")" 'BEGIN { print 1 - s }')
 d1=$(awk -v s="$(jget soc "$tmp/b1.json")" 'BEGIN { print 1 - s }')
 check "battery.n_parallel 2 -> 4: half the state of charge drawn (0.45..0.55)" \
     ratio_in "$d1" "$d0" 0.45 0.55
+run_json "$tmp/b2.json" --scenario $scn --duration 2 --params params/endurance.params
+d2=$(awk -v s="$(jget soc "$tmp/b2.json")" 'BEGIN { print 1 - s }')
+check "params/endurance.params (144s4p): half the state of charge drawn of the default (0.45..0.55)" \
+    ratio_in "$d2" "$d0" 0.45 0.55
 # Filter: twice the inductor resistance, about twice its copper losses.
 run_json "$tmp/f0.json" --scenario $scn --duration 1 --energy-audit
 run_json "$tmp/f1.json" --scenario $scn --duration 1 --energy-audit --set stage.r_l=0.05
