@@ -91,6 +91,7 @@ static bool same(const drive_segment *a, const drive_segment *b) {
 void suite_fast_kernel(void) {
     drive_config c = {0};
     c.inverter = DRIVE_INVERTER_SWITCHING;
+    c.modulator = DRIVE_MODULATOR_SAMPLED; /* the step the kernel computes (drive_segment.h) */
     c.down = COUPLE_ZOH;
     c.up = COUPLE_AVG;
     c.fast_ns = 2000u;
