@@ -89,7 +89,11 @@ const char cli_usage_studies[] =
     "                           default one with every key's unit, range, source)\n"
     "  --set KEY=VALUE          overrides one key of the set (repeatable); the value\n"
     "                           may end in its unit: --set 'stage.l=2e-3 H'\n"
-    "  --emit-c FILE.c          (params) the set as C, for make firmware PARAMS=FILE\n";
+    "  --emit-c FILE.c          (params) the set as C, for make firmware PARAMS=FILE\n"
+    "\n"
+    "The multi-party run's slow segment (make qemu-party, docs/cosimulation.md):\n"
+    "       uuvsim party --link SOCKET --scenario FILE [--duration S] [--csv FILE]\n"
+    "                    [--timeout S] [--corrupt-down K] [--drop-down K] [--corrupt-up K]\n";
 
 static bool fail(char *err, size_t len, const char *format, ...)
     __attribute__((format(printf, 3, 4)));
