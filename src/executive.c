@@ -567,17 +567,15 @@ void exec_drive_take(exec *e, const exec_to_drive *d) {
 }
 
 void exec_slow_step(exec *e) {
-    if (e->state != EXEC_RUNNING) {
-        return;
-    }
-    if (e->cfg.plant == EXEC_PLANT_FULL) {
+    if ((e->state == EXEC_RUNNING) && (e->cfg.plant == EXEC_PLANT_FULL)) {
         drive_slow_measure(&e->drive, &e->meas);
-    }
-    exec_slow_model(e);
-    if (e->cfg.plant == EXEC_PLANT_FULL) {
+        exec_slow_model(e);
         exec_drive_take(e, &e->down);
-    } else {
+    } else if (e->state == EXEC_RUNNING) {
+        exec_slow_model(e);
         e->slow_pending = false;
+    } else {
+        /* The run has ended: nothing more. */
     }
 }
 

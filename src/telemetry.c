@@ -104,15 +104,12 @@ static size_t frame_end(uint8_t *buf, tlm_writer *w) {
     return (size_t)(w->p - buf);
 }
 
+/* The payload length of each type (tlm_type's values); 0: no such type. */
 static uint32_t payload_length(uint32_t type) {
-    switch (type) {
-    case TLM_START: return TLM_START_PAYLOAD;
-    case TLM_RECORD: return TLM_RECORD_PAYLOAD;
-    case TLM_END: return TLM_END_PAYLOAD;
-    case TLM_LINK_UP: return TLM_LINK_UP_PAYLOAD;
-    case TLM_LINK_DOWN: return TLM_LINK_DOWN_PAYLOAD;
-    default: return 0u;
-    }
+    static const uint32_t length[] = {
+        0u, TLM_START_PAYLOAD, TLM_RECORD_PAYLOAD, TLM_END_PAYLOAD, TLM_LINK_UP_PAYLOAD,
+        TLM_LINK_DOWN_PAYLOAD};
+    return (type <= (uint32_t)TLM_LINK_DOWN) ? length[type] : 0u;
 }
 
 /* ---- Encoders ---------------------------------------------------------- */
@@ -251,7 +248,7 @@ size_t tlm_encode_link_down(uint8_t *buf, uint16_t seq, const tlm_link_down *d) 
     put_u8(&w, f->switch_open);
     put_u8(&w, f->leg_short);
     put_u8(&w, f->phase_open);
-    put_u8(&w, x->faults != NULL ? 1u : 0u);
+    put_u8(&w, (x->faults != NULL) ? 1u : 0u);
     put_u8(&w, x->trip);
     put_u8(&w, x->state);
     put_u16(&w, 0u); /* reserved */
@@ -356,7 +353,8 @@ void tlm_decode_link_up(const tlm_frame *f, tlm_link_up *u) {
         *v[i] = get_f64(&r);
     }
     u->meas.saturations = get_u32(&r);
-    u->meas.trip = (drive_trip)(get_u32(&r) & 0xFFu);
+    const uint8_t trip = (uint8_t)(get_u32(&r) & 0xFFu);
+    u->meas.trip = (drive_trip)trip;
 }
 
 void tlm_decode_link_down(const tlm_frame *f, tlm_link_down *d) {

@@ -52,10 +52,9 @@
 #define TLM_START_PAYLOAD (4u + 5u * 4u + 8u + TLM_MACHINE_CHARS)
 #define TLM_RECORD_PAYLOAD (4u + 30u * 8u + 2u * 4u)
 #define TLM_END_PAYLOAD (4u + 4u * 8u + 5u * 4u + 2u * 8u + 4u)
-#define TLM_LINK_UP_PAYLOAD (4u + 19u * 8u + 2u * 4u)
-#define TLM_LINK_DOWN_PAYLOAD (4u + 5u * 8u + 8u)
+#define TLM_LINK_UP_PAYLOAD (4u + (19u * 8u) + (2u * 4u))
+#define TLM_LINK_DOWN_PAYLOAD (4u + (5u * 8u) + 8u)
 #define TLM_FRAME_MAX (TLM_HEADER_BYTES + TLM_RECORD_PAYLOAD + TLM_CRC_BYTES)
-#define TLM_LINK_DOWN_FRAME (TLM_HEADER_BYTES + TLM_LINK_DOWN_PAYLOAD + TLM_CRC_BYTES)
 
 #define TLM_VERSION 2u
 

@@ -156,7 +156,7 @@ static void fw_send_report(void) {
 
 static tlm_link_up fw_up;
 static tlm_link_down fw_down;
-static uint8_t fw_rx[TLM_LINK_DOWN_FRAME];
+static uint8_t fw_rx[TLM_HEADER_BYTES + TLM_LINK_DOWN_PAYLOAD + TLM_CRC_BYTES];
 static uint16_t fw_rx_seq; /* the sequence number the next frame from the host must carry */
 
 /* A frame from the host failed a check: the run ends (exit status 2). */

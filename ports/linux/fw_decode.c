@@ -188,6 +188,9 @@ static bool decode(const char *path, const unsigned char *buf, size_t n, FILE *c
             if (csv != NULL) {
                 csv_row(csv, &s->last, full);
             }
+        } else if (f.type != TLM_END) {
+            return stream_error(path, at, k, "a frame of the multi-party link (LINK_UP or "
+                                             "LINK_DOWN), not of a telemetry stream");
         } else {
             tlm_decode_end(&f, &s->end);
             if (!isfinite(s->end.e_batt_j) || !isfinite(s->end.e_mech_j)) {

@@ -227,7 +227,7 @@ static bool party_receive(party_link *l, const char *expected, uint8_t type_a, u
 }
 
 static bool party_send(party_link *l, const tlm_link_down *d, const party_options *o) {
-    uint8_t buf[TLM_LINK_DOWN_FRAME];
+    uint8_t buf[TLM_FRAME_MAX];
     if (l->tx_seq == o->drop_down) {
         l->tx_seq++; /* the test's lost frame: the next one goes out in its place */
     }

@@ -5,7 +5,8 @@
 # decoder; the JSON summary stays valid JSON with a machine name and a
 # scenario path full of quotes, backslashes, newlines and escape characters;
 # a record holding a NaN and an instruction count file with a negative count
-# are refused (exit 2), with nothing written; overruns near 2^32 at every
+# are refused (exit 2), with nothing written, and so is a frame of the
+# multi-party link inside a telemetry stream; overruns near 2^32 at every
 # rate sum without wrapping. Prints "N passed, N failed".
 set -u
 decode=$1
@@ -66,6 +67,21 @@ if [ $status -eq 2 ] && grep -q '^uuvsim-decode: .*a negative count' "$tmp/err" 
    [ ! -e "$tmp/i.json" ]; then
     ok "a negative instruction count: refused (exit 2), not wrapped"
 else echo "exit $status" >>"$tmp/err"; ko "a negative instruction count: refused"; fi
+
+# A frame of the multi-party link (LINK_DOWN, well formed) inside a telemetry stream.
+python3 - "$tmp/g.bin" "$tmp/l.bin" <<'PY'
+import struct, sys, zlib
+data = open(sys.argv[1], 'rb').read()
+n = 7 + struct.unpack('<H', data[3:5])[0] + 4  # the START frame
+body = struct.pack('<BHH', 5, 52, 1) + bytes(52)
+open(sys.argv[2], 'wb').write(data[:n] + b'\xa5\x5a' + body + struct.pack('<I', zlib.crc32(body)))
+PY
+"$decode" "$tmp/l.bin" --csv "$tmp/l.csv" 2>"$tmp/err"
+status=$?
+if [ $status -eq 2 ] && grep -q '^uuvsim-decode: .*frame 1: a frame of the multi-party link' "$tmp/err" &&
+   [ ! -e "$tmp/l.csv" ]; then
+    ok "a multi-party link frame in a telemetry stream: refused (exit 2), nothing written"
+else echo "exit $status" >>"$tmp/err"; ko "a multi-party link frame in a telemetry stream: refused"; fi
 
 "$decode" "$tmp/g.bin" --json "$tmp/g.bin" 2>"$tmp/err"
 if [ $? -eq 2 ] && grep -q '^uuvsim-decode: --json .* are the same file' "$tmp/err"; then
