@@ -168,7 +168,10 @@ ARM_COMMON := $(COMMON) -O2 -g -ffreestanding -fno-tree-loop-distribute-patterns
 # The real-time fast step of the fixed Cortex-M4 and M7 images: 1 the
 # Thumb-2 kernel (ports/cortexm/fast_kernel_v7m.S), 0 the C (to compare
 # the two). The Cortex-M3 images keep the C: the kernel would not fit
-# beside it in their 64 KiB, and they have no 2 us budget to meet.
+# beside it in their 64 KiB, and they have no 2 us budget to meet. For the
+# same 64 KiB they are lean images (UUV_LEAN_IMAGE=1, uuv_config.h): no
+# event or averaged inverter, energy audit, FOH, DERIV or filter coupling,
+# or manoeuvre metrics, none of which the firmware runs.
 # (Objects are rebuilt when it changes: the variant's cflags file.)
 FW_FAST_KERNEL ?= 1
 FW_FAST_C := src/drive_segment_fixed.c src/drive_segment_float.c src/executive.c
@@ -207,7 +210,8 @@ $(1)-$(2)_DIR := $(BUILD)/cortexm-$(1)-$(2)
 $(1)-$(2)_KERNEL := $$(if $$(filter fixed,$(2)),$$(if $$(findstring cortex-m3,$(3)),0,$(FW_FAST_KERNEL)),0)
 $(1)-$(2)_CFLAGS := $(ARM_COMMON) $(3) -DUUV_NUMERIC=$(NUM_$(2)) -DUUV_TARGET_HAS_FPU=$(4) \
     -DSCENARIO_MAX_EVENTS=$(FW_SCENARIO_EVENTS)u -DBOARD_NAME='"$(1)"' $(INC) -Iports/cortexm \
-    -DFW_FAST_KERNEL=$$($(1)-$(2)_KERNEL)
+    -DFW_FAST_KERNEL=$$($(1)-$(2)_KERNEL) \
+    $$(if $$(findstring cortex-m3,$(3)),-DUUV_LEAN_IMAGE=1)
 $(1)-$(2)_LDFLAGS := $(3) -nostdlib -Wl,--gc-sections -Lldscripts -Tldscripts/$(1).ld
 $(1)-$(2)_SRC_O := $$(patsubst %.c,$$($(1)-$(2)_DIR)/obj/%.o,$(SRC_C) $(CORTEXM_PORT_C) $(5)) \
     $$(if $$(filter 1,$$($(1)-$(2)_KERNEL)),$$($(1)-$(2)_DIR)/obj/ports/cortexm/fast_kernel_v7m.o)

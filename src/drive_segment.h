@@ -178,8 +178,28 @@ typedef struct {
 typedef enum {
     DRIVE_OK = 0,
     DRIVE_ERR_CONFIG,   /* a rate, ratio or mode out of range */
-    DRIVE_ERR_MODEL     /* a model refused its parameters at these steps */
+    DRIVE_ERR_MODEL,    /* a model refused its parameters at these steps */
+    DRIVE_ERR_LAYER     /* a layer, coupling or audit this build leaves out */
 } drive_status;
+
+/*
+ * DRIVE_OPTIONAL(cond): cond, except in a lean image (UUV_LEAN_IMAGE,
+ * uuv_config.h), where it is false and the code it guards is dropped: the
+ * event and averaged layers, the energy audit, the extrapolating (FOH,
+ * DERIV) and filter couplings.
+ */
+#define DRIVE_OPTIONAL(cond) ((UUV_LEAN_IMAGE == 0) && (cond))
+
+/* The averaged layer runs (it has no switching stage: d->stage is NULL). */
+#define DRIVE_AVERAGED(d) DRIVE_OPTIONAL((d)->stage == NULL)
+
+/* Whether this build has what the options ask for (see DRIVE_OPTIONAL). */
+static inline bool drive_options_built(drive_inverter inverter, coupling_down down,
+                                       coupling_up up, bool energy_audit) {
+    return UUV_LEAN_IMAGE == 0 ||
+           (inverter == DRIVE_INVERTER_SWITCHING && !energy_audit &&
+            (down == COUPLE_ZOH || down == COUPLE_STAGGER) && up != COUPLE_FILTER);
+}
 
 /*
  * The drive segment (its fields per numeric build, below), and a port's

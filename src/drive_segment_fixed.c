@@ -39,7 +39,10 @@ static void factor_split(double f, int32_t *mant, uint32_t *shift) {
 }
 
 drive_status drive_init(drive_segment *d, const drive_config *cfg, const propeller_model *prop) {
-    const bool averaged = (cfg->inverter == DRIVE_INVERTER_AVERAGED);
+    if (!drive_options_built(cfg->inverter, cfg->down, cfg->up, cfg->energy_audit)) {
+        return DRIVE_ERR_LAYER;
+    }
+    const bool averaged = DRIVE_OPTIONAL(cfg->inverter == DRIVE_INVERTER_AVERAGED);
     if (cfg->fast_ns < 100u || cfg->fast_per_medium == 0u || cfg->medium_per_control == 0u ||
         cfg->fast_per_medium > 100000u || cfg->medium_per_slow == 0u ||
         (averaged && cfg->fast_per_medium != 1u) ||
@@ -127,7 +130,7 @@ drive_status drive_init(drive_segment *d, const drive_config *cfg, const propell
 
 /* The DC-link voltage of the stage in use (Q3.28), whichever it is. */
 static int32_t stage_v_dc(const drive_segment *d) {
-    return (d->stage != NULL) ? d->stage->v_dc : d->qs.v_dc;
+    return !DRIVE_AVERAGED(d) ? d->stage->v_dc : d->qs.v_dc;
 }
 
 
@@ -287,10 +290,10 @@ static void faulted_pwm_out(const drive_segment *d, pwm_out_q *out) {
  */
 static void fast_tick_general(drive_segment *d) __attribute__((noinline));
 static void fast_tick_general(drive_segment *d) {
-    if (d->cfg.inverter == DRIVE_INVERTER_AVERAGED) {
+    if (DRIVE_OPTIONAL(d->cfg.inverter == DRIVE_INVERTER_AVERAGED)) {
         return; /* the averaged layer's stage runs at the boundary (drive_medium_begin) */
     }
-    if (d->cfg.inverter == DRIVE_INVERTER_SWITCHING) {
+    if (!DRIVE_OPTIONAL(d->cfg.inverter == DRIVE_INVERTER_EVENT)) {
         /* The real-time step with the duties the faults leave: the
          * real-time path's results bit for bit when there are none. */
         int32_t duty[3];
@@ -318,13 +321,13 @@ static void fast_tick_general(drive_segment *d) {
     if (d->fault.phase_open != 0u) {
         open_phase_fast(d->i_fast, d->fault.phase_open);
     }
-    if (d->cfg.energy_audit) {
+    if (DRIVE_OPTIONAL(d->cfg.energy_audit)) {
         audit_fast(d);
     }
     d->sums.v_cap[0] += va;
     d->sums.v_cap[1] += vb;
     d->sums.v_dc += ps->v_dc;
-    if (d->cfg.up == COUPLE_FILTER) {
+    if (DRIVE_OPTIONAL(d->cfg.up == COUPLE_FILTER)) {
         d->filt[0] += ((int64_t)va * 65536 - d->filt[0]) * (int64_t)d->filt_k / 65536;
         d->filt[1] += ((int64_t)vb * 65536 - d->filt[1]) * (int64_t)d->filt_k / 65536;
     }
@@ -352,7 +355,7 @@ void drive_use_fast_kernel(drive_segment *d, drive_fast_kernel *kernel) {
 /* Applies requested faults at a slow boundary (fast context). */
 static void faults_apply(drive_segment *d) {
     d->fault = d->fault_next;
-    if (d->stage != NULL) {
+    if (!DRIVE_AVERAGED(d)) {
         d->stage->k.neg_k_c = d->neg_k_c_next; /* the averaged layer's is in bus_next */
     }
     d->i_offset = d->i_offset_next;
@@ -414,7 +417,7 @@ static inline void battery_take(drive_segment *d) {
 }
 
 void drive_medium_publish(drive_segment *d) {
-    if (d->stage == NULL) {
+    if (DRIVE_AVERAGED(d)) {
         return; /* the averaged layer forms its frame in drive_medium_begin() */
     }
     drive_frame_sums *m = &d->medium_in;
@@ -423,12 +426,12 @@ void drive_medium_publish(drive_segment *d) {
     m->v_dc = d->sums.v_dc;
     m->v_mark[0] = d->stage->ph[0].v_c;
     m->v_mark[1] = d->stage->ph[1].v_c;
-    if (d->cfg.up == COUPLE_FILTER) {
+    if (DRIVE_OPTIONAL(d->cfg.up == COUPLE_FILTER)) {
         m->filt_mark[0] = d->filt[0];
         m->filt_mark[1] = d->filt[1];
     }
     m->sat = d->stage->sat_count;
-    if (d->cfg.energy_audit) {
+    if (DRIVE_OPTIONAL(d->cfg.energy_audit)) {
         m->loss_l = d->sums.loss_l;
         m->loss_d = d->sums.loss_d;
         d->sums.loss_l = 0;
@@ -472,7 +475,7 @@ void drive_medium_begin(drive_segment *d, bool slow_boundary) {
     if (slow_boundary) {
         slow_boundary_apply(d);
     }
-    if (d->stage == NULL) {
+    if (DRIVE_AVERAGED(d)) {
         begin_averaged(d, slow_boundary);
         return;
     }
@@ -502,11 +505,11 @@ static void emf_update(drive_segment *d, const q31_t v_mean[2], const q31_t i_en
         e[x] = (int32_t)fp_sat_q31(fp_shr_round_i64(v_mean[x], 3u) - drop);
     }
     int32_t de[2] = {0, 0};
-    if (d->cfg.down == COUPLE_FOH) {
+    if (DRIVE_OPTIONAL(d->cfg.down == COUPLE_FOH)) {
         for (int x = 0; x < 2; x++) {
             de[x] = (int32_t)(((int64_t)e[x] - d->e_prev[x]) / (int64_t)d->cfg.fast_per_medium);
         }
-    } else if (d->cfg.down == COUPLE_DERIV) {
+    } else if (DRIVE_OPTIONAL(d->cfg.down == COUPLE_DERIV)) {
         /* de/dt = w_s (e_c - e_b) / sqrt 3 for phase a, (e_a - e_c) / sqrt 3 for b. */
         q31_t g = fp_mul_q31(d->cmd.freq, d->k_deriv);
         de[0] = (int32_t)fp_shr_round_i64(((int64_t)-e[0] - 2 * (int64_t)e[1]) * g, 31u);
@@ -553,14 +556,14 @@ static void slow_sums_add(drive_segment *d, const drive_frame_sums *s, const q31
     for (int x = 0; x < 3; x++) {
         w->i_sq[x] += (int64_t)i15[x] * i15[x];
     }
-    if (d->cfg.energy_audit) {
+    if (DRIVE_OPTIONAL(d->cfg.energy_audit)) {
         w->loss_l += s->loss_l;
         w->loss_d += s->loss_d;
         w->e_loss_motor_j += motor_loss_j(&d->motor);
     }
     w->p_mech += fp_shr_round_i64((int64_t)d->mout.te * (int64_t)d->mout.w, 31u);
     w->medium_n++;
-    if (d->cfg.up == COUPLE_FILTER) {
+    if (DRIVE_OPTIONAL(d->cfg.up == COUPLE_FILTER)) {
         /* Time constant: the slow frame. */
         d->w_filt += (q31_t)(((int64_t)d->mout.w - d->w_filt) / (int64_t)d->cfg.medium_per_slow);
     }
@@ -595,18 +598,18 @@ void drive_medium_task(drive_segment *d, bool control_due, bool slow_boundary) {
     int32_t corr[2];
     for (int x = 0; x < 2; x++) {
         corr[x] = fp_shr_round_i32(i_end[x], 3u) - s->i_mark[x];
-        if (d->stage != NULL) {
+        if (!DRIVE_AVERAGED(d)) {
             /* Less what the last correction has still to bring after the mark. */
             const int64_t pending = (int64_t)d->corr_prev[x] * (int64_t)d->corr_pending;
             corr[x] -= (int32_t)(pending / (int64_t)n);
             d->corr_prev[x] = corr[x];
         }
     }
-    if (d->stage != NULL) {
+    if (!DRIVE_AVERAGED(d)) {
         emf_update(d, v_mean, i_end, corr);
     }
     for (int x = 0; x < 2; x++) {
-        d->out.corr[x] = (d->stage != NULL) ? 0 : corr[x];
+        d->out.corr[x] = !DRIVE_AVERAGED(d) ? 0 : corr[x];
         d->i_prev[x] = i_end[x];
     }
     slow_sums_add(d, s, i_end);
@@ -678,7 +681,7 @@ void drive_slow_measure(const drive_segment *d, drive_slow_meas *meas) {
     double w_now = (double)w->w_end / Q31_ONE * DRIVE_BASE_SPEED_RADPS;
     double w_filt = (double)w->w_filt / Q31_ONE * DRIVE_BASE_SPEED_RADPS;
     meas->shaft_radps = (d->cfg.up == COUPLE_AVG)      ? w_avg
-                        : (d->cfg.up == COUPLE_FILTER) ? w_filt
+                        : DRIVE_OPTIONAL(d->cfg.up == COUPLE_FILTER) ? w_filt
                                                        : w_now;
     meas->shaft_end_radps = w_now;
     meas->te_nm = (double)w->te / nm / Q31_ONE * DRIVE_BASE_TORQUE_NM;
@@ -709,7 +712,7 @@ void drive_fault_request(drive_segment *d, const drive_faults *f) {
     power_stage_params faulted = d->ps_params;
     d->fault_next = *f;
     faulted.c_dc_f = d->cfg.stage->c_dc_f * f->dc_cap_frac;
-    if (d->stage == NULL) {
+    if (DRIVE_AVERAGED(d)) {
         /* The averaged layer: the bus constants fold the capacitance in;
          * they take effect at the next slow boundary, with the fault. */
         d->ps_params.c_dc_f = faulted.c_dc_f;
@@ -737,7 +740,7 @@ void drive_trip_request(drive_segment *d, drive_trip why) {
 
 void drive_battery_next(drive_segment *d, const drive_battery *next) {
     d->bat_next = *next;
-    if (d->stage == NULL) {
+    if (DRIVE_AVERAGED(d)) {
         d->ps_clamps += inverter_qs_battery_q(&d->qs, d->ps_params.c_dc_f, next->g_s, next->b_a,
                                               &d->bus_next);
     } else {
@@ -748,7 +751,7 @@ void drive_battery_next(drive_segment *d, const drive_battery *next) {
 
 void drive_start(drive_segment *d, const drive_battery *battery) {
     d->bat_next = d->bat_in_force = d->bat_done = *battery;
-    if (d->stage == NULL) {
+    if (DRIVE_AVERAGED(d)) {
         d->ps_clamps += inverter_qs_battery_q(&d->qs, d->ps_params.c_dc_f, battery->g_s,
                                               battery->b_a, &d->bus);
         d->bus_next = d->bus;

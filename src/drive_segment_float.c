@@ -15,7 +15,10 @@
 #include "models/drive/inverter/power_stage_fast.h"
 
 drive_status drive_init(drive_segment *d, const drive_config *cfg, const propeller_model *prop) {
-    const bool averaged = (cfg->inverter == DRIVE_INVERTER_AVERAGED);
+    if (!drive_options_built(cfg->inverter, cfg->down, cfg->up, cfg->energy_audit)) {
+        return DRIVE_ERR_LAYER;
+    }
+    const bool averaged = DRIVE_OPTIONAL(cfg->inverter == DRIVE_INVERTER_AVERAGED);
     if (cfg->fast_ns < 100u || cfg->fast_per_medium == 0u || cfg->medium_per_control == 0u ||
         cfg->fast_per_medium > 100000u || cfg->medium_per_slow == 0u ||
         (averaged && cfg->fast_per_medium != 1u) ||
@@ -94,7 +97,7 @@ drive_status drive_init(drive_segment *d, const drive_config *cfg, const propell
 
 /* The DC-link voltage of the stage in use [V], whichever it is. */
 static float stage_v_dc(const drive_segment *d) {
-    return (d->stage != NULL) ? d->stage->v_dc : d->qs.v_dc;
+    return !DRIVE_AVERAGED(d) ? d->stage->v_dc : d->qs.v_dc;
 }
 
 
@@ -206,10 +209,10 @@ static void faulted_pwm_out(const drive_segment *d, pwm_out_f32 *out) {
  */
 static void fast_tick_general(drive_segment *d) __attribute__((noinline));
 static void fast_tick_general(drive_segment *d) {
-    if (d->cfg.inverter == DRIVE_INVERTER_AVERAGED) {
+    if (DRIVE_OPTIONAL(d->cfg.inverter == DRIVE_INVERTER_AVERAGED)) {
         return; /* the averaged layer's stage runs at the boundary (drive_medium_begin) */
     }
-    if (d->cfg.inverter == DRIVE_INVERTER_SWITCHING) {
+    if (!DRIVE_OPTIONAL(d->cfg.inverter == DRIVE_INVERTER_EVENT)) {
         /* As in drive_segment_fixed.c: the real-time step with the faults' duties. */
         int32_t duty[3];
         rt_duties(d, duty);
@@ -235,13 +238,13 @@ static void fast_tick_general(drive_segment *d) {
     if (d->fault.phase_open != 0u) {
         open_phase_fast(d->i_fast, d->fault.phase_open);
     }
-    if (d->cfg.energy_audit) {
+    if (DRIVE_OPTIONAL(d->cfg.energy_audit)) {
         audit_fast(d);
     }
     d->sums.v_cap[0] += va;
     d->sums.v_cap[1] += vb;
     d->sums.v_dc += ps->v_dc;
-    if (d->cfg.up == COUPLE_FILTER) {
+    if (DRIVE_OPTIONAL(d->cfg.up == COUPLE_FILTER)) {
         d->filt[0] += (va - d->filt[0]) * d->filt_k;
         d->filt[1] += (vb - d->filt[1]) * d->filt_k;
     }
@@ -268,7 +271,7 @@ void drive_use_fast_kernel(drive_segment *d, drive_fast_kernel *kernel) {
 
 static void faults_apply(drive_segment *d) {
     d->fault = d->fault_next;
-    if (d->stage != NULL) {
+    if (!DRIVE_AVERAGED(d)) {
         d->stage->k.neg_k_c = d->neg_k_c_next; /* the averaged layer's is in bus_next */
     }
     d->i_offset = d->i_offset_next;
@@ -325,7 +328,7 @@ static inline void battery_take(drive_segment *d) {
 }
 
 void drive_medium_publish(drive_segment *d) {
-    if (d->stage == NULL) {
+    if (DRIVE_AVERAGED(d)) {
         return; /* the averaged layer forms its frame in drive_medium_begin() */
     }
     drive_frame_sums *m = &d->medium_in;
@@ -334,12 +337,12 @@ void drive_medium_publish(drive_segment *d) {
     m->v_dc = d->sums.v_dc;
     m->v_mark[0] = d->stage->ph[0].v_c;
     m->v_mark[1] = d->stage->ph[1].v_c;
-    if (d->cfg.up == COUPLE_FILTER) {
+    if (DRIVE_OPTIONAL(d->cfg.up == COUPLE_FILTER)) {
         m->filt_mark[0] = d->filt[0];
         m->filt_mark[1] = d->filt[1];
     }
     m->sat = d->stage->sat_count;
-    if (d->cfg.energy_audit) {
+    if (DRIVE_OPTIONAL(d->cfg.energy_audit)) {
         m->loss_l = d->sums.loss_l;
         m->loss_d = d->sums.loss_d;
         d->sums.loss_l = 0.0f;
@@ -375,7 +378,7 @@ void drive_medium_begin(drive_segment *d, bool slow_boundary) {
     if (slow_boundary) {
         slow_boundary_apply(d);
     }
-    if (d->stage == NULL) {
+    if (DRIVE_AVERAGED(d)) {
         begin_averaged(d, slow_boundary);
         return;
     }
@@ -396,11 +399,11 @@ static void emf_update(drive_segment *d, const float v_mean[2], const float i_en
         e[x] = v_mean[x] - (i_end[x] - d->i_prev[x]) * d->e_per_di;
     }
     float de[2] = {0.0f, 0.0f};
-    if (d->cfg.down == COUPLE_FOH) {
+    if (DRIVE_OPTIONAL(d->cfg.down == COUPLE_FOH)) {
         float k = 1.0f / (float)d->cfg.fast_per_medium;
         de[0] = (e[0] - d->e_prev[0]) * k;
         de[1] = (e[1] - d->e_prev[1]) * k;
-    } else if (d->cfg.down == COUPLE_DERIV) {
+    } else if (DRIVE_OPTIONAL(d->cfg.down == COUPLE_DERIV)) {
         float g = d->cmd.freq_hz * d->k_deriv;
         de[0] = (-e[0] - 2.0f * e[1]) * g;
         de[1] = (2.0f * e[0] + e[1]) * g;
@@ -436,14 +439,14 @@ static void slow_sums_add(drive_segment *d, const drive_frame_sums *s, const flo
         const float sq = i3[x] * i3[x];
         w->i_sq[x] += (double)sq;
     }
-    if (d->cfg.energy_audit) {
+    if (DRIVE_OPTIONAL(d->cfg.energy_audit)) {
         w->loss_l += (double)s->loss_l;
         w->loss_d += (double)s->loss_d;
         w->e_loss_motor_j += motor_loss_j(&d->motor);
     }
     w->p_mech += (double)(d->mout.te_nm * d->mout.w_radps);
     w->medium_n++;
-    if (d->cfg.up == COUPLE_FILTER) {
+    if (DRIVE_OPTIONAL(d->cfg.up == COUPLE_FILTER)) {
         d->w_filt += (d->mout.w_radps - d->w_filt) / (float)d->cfg.medium_per_slow;
     }
 }
@@ -474,17 +477,17 @@ void drive_medium_task(drive_segment *d, bool control_due, bool slow_boundary) {
     float corr[2];
     for (int x = 0; x < 2; x++) {
         corr[x] = i_end[x] - s->i_mark[x];
-        if (d->stage != NULL) {
+        if (!DRIVE_AVERAGED(d)) {
             /* Less what the last correction has still to bring (drive_segment_fixed.c). */
             corr[x] -= d->corr_prev[x] * d->corr_pending;
             d->corr_prev[x] = corr[x];
         }
     }
-    if (d->stage != NULL) {
+    if (!DRIVE_AVERAGED(d)) {
         emf_update(d, v_mean, i_end, corr);
     }
     for (int x = 0; x < 2; x++) {
-        d->out.corr[x] = (d->stage != NULL) ? 0.0f : corr[x];
+        d->out.corr[x] = !DRIVE_AVERAGED(d) ? 0.0f : corr[x];
         d->i_prev[x] = i_end[x];
     }
     slow_sums_add(d, s, i_end);
@@ -544,7 +547,7 @@ void drive_slow_measure(const drive_segment *d, drive_slow_meas *meas) {
     meas->v_dc_mean_v = w->v_dc / nf;
     meas->v_dc_sq_mean_v2 = w->v_dc_sq / nf;
     meas->shaft_radps = (d->cfg.up == COUPLE_AVG)      ? w->w / nm
-                        : (d->cfg.up == COUPLE_FILTER) ? (double)w->w_filt
+                        : DRIVE_OPTIONAL(d->cfg.up == COUPLE_FILTER) ? (double)w->w_filt
                                                        : (double)w->w_end;
     meas->shaft_end_radps = (double)w->w_end;
     meas->te_nm = w->te / nm;
@@ -572,7 +575,7 @@ void drive_fault_request(drive_segment *d, const drive_faults *f) {
     power_stage_params faulted = d->ps_params;
     d->fault_next = *f;
     faulted.c_dc_f = d->cfg.stage->c_dc_f * f->dc_cap_frac;
-    if (d->stage == NULL) {
+    if (DRIVE_AVERAGED(d)) {
         /* As in drive_segment_fixed.c: the bus constants fold the capacitance in. */
         d->ps_params.c_dc_f = faulted.c_dc_f;
         d->ps_clamps += inverter_qs_battery_f32(&d->qs, d->ps_params.c_dc_f, d->bat_next.g_s,
@@ -598,7 +601,7 @@ void drive_trip_request(drive_segment *d, drive_trip why) {
 
 void drive_battery_next(drive_segment *d, const drive_battery *next) {
     d->bat_next = *next;
-    if (d->stage == NULL) {
+    if (DRIVE_AVERAGED(d)) {
         d->ps_clamps += inverter_qs_battery_f32(&d->qs, d->ps_params.c_dc_f, next->g_s,
                                                 next->b_a, &d->bus_next);
     } else {
@@ -610,7 +613,7 @@ void drive_battery_next(drive_segment *d, const drive_battery *next) {
 
 void drive_start(drive_segment *d, const drive_battery *battery) {
     d->bat_next = d->bat_in_force = d->bat_done = *battery;
-    if (d->stage == NULL) {
+    if (DRIVE_AVERAGED(d)) {
         d->ps_clamps += inverter_qs_battery_f32(&d->qs, d->ps_params.c_dc_f, battery->g_s,
                                                 battery->b_a, &d->bus);
         d->bus_next = d->bus;

@@ -148,8 +148,9 @@ static exec_status init_drive(exec *e) {
     dc.pwm = c->params->pwm;
     dc.motor = c->params->motor;
     dc.control = c->params->control;
-    if (drive_init(&e->drive, &dc, &e->prop) != DRIVE_OK) {
-        return EXEC_ERR_MODEL;
+    const drive_status ds = drive_init(&e->drive, &dc, &e->prop);
+    if (ds != DRIVE_OK) {
+        return (ds == DRIVE_ERR_LAYER) ? EXEC_ERR_LAYER : EXEC_ERR_MODEL;
     }
     drive_start(&e->drive, &b0);
     e->drive_ready = true;
@@ -522,7 +523,8 @@ void exec_slow_model(exec *e) {
     }
     const double *x = e->x;
     double t = (double)e->frame * e->slow_s;
-    if (e->frame % e->slow_per_report == 0u) {
+    /* The manoeuvre metrics, which only the desk reports (not in a lean image). */
+    if (UUV_LEAN_IMAGE == 0 && e->frame % e->slow_per_report == 0u) {
         double speed2 = x[VESSEL_U_MPS] * x[VESSEL_U_MPS] + x[VESSEL_V_MPS] * x[VESSEL_V_MPS] +
                         x[VESSEL_W_MPS] * x[VESSEL_W_MPS];
         manoeuvre_update(&e->man, t, x[VESSEL_X_M], x[VESSEL_Y_M], x[VESSEL_PSI_RAD],

@@ -109,7 +109,9 @@ typedef enum {
     EXEC_ERR_MODEL,  /* a model refused its parameters */
     EXEC_ERR_DURATION_SHORT, /* the duration rounds to no record (less than half a period) */
     EXEC_ERR_DURATION_LONG,  /* the duration needs more frames than the counters hold */
-    EXEC_ERR_SLOW_FRAME      /* the slow frame beyond 10 s, or below 1 ms for the vessel plant */
+    EXEC_ERR_SLOW_FRAME,     /* the slow frame beyond 10 s, or below 1 ms for the vessel plant */
+    EXEC_ERR_LAYER           /* an inverter layer, coupling or audit the build leaves out
+                              * (UUV_LEAN_IMAGE, uuv_config.h) */
 } exec_status;
 
 /* Why a run ended early. */

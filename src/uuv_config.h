@@ -52,6 +52,20 @@
 #error "UUV_HW_SQRT_F32 needs a target with a single-precision FPU"
 #endif
 
+/*
+ * A lean image (UUV_LEAN_IMAGE 1; 0 by default) leaves out what the
+ * firmware never runs and a 64 KiB flash cannot also hold: the drive's
+ * event and averaged inverter layers, its energy audit and its
+ * extrapolating (FOH, DERIV) and filter couplings (drive_segment.h,
+ * DRIVE_OPTIONAL), and the manoeuvre metrics, which only the desk reports
+ * (executive.c). The port sets 1 for the Cortex-M3 images; drive_init()
+ * then refuses the left-out options (DRIVE_ERR_LAYER) and the code that
+ * serves them is dropped. The bits of what is built are the same either way.
+ */
+#ifndef UUV_LEAN_IMAGE
+#define UUV_LEAN_IMAGE 0
+#endif
+
 /* Name of the numeric build, as reports print it. */
 #if UUV_NUMERIC == UUV_NUMERIC_FIXED
 #define UUV_NUMERIC_NAME "fixed"
