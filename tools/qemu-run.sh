@@ -32,6 +32,8 @@ rm -f "$out/telemetry.bin" "$out/telemetry.csv" "$out/summary.json" "$out/consol
 
 args="arg=uuvsim,arg=scenario=$scenario"
 [ -n "$duration" ] && args="$args,arg=duration=$duration"
+# FW_RUN_ARGS: more words for the firmware's command line (a test image's overrun=...).
+for w in ${FW_RUN_ARGS:-}; do args="$args,arg=$w"; done
 plugin_opt=""
 if [ -n "$plugin" ]; then
     regions=$(sh "$here/fw-regions.sh" "$elf" | tr '\n' ',' | sed 's/,$//') || exit 2

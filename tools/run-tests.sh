@@ -131,6 +131,13 @@ for num in fixed float; do
         mps2-an386 "$num" "$BUILD/cortexm-mps2-an386-$num/uuvsim-motor4kw.elf" \
         "$BUILD/linux-$num/uuvsim" "$BUILD/qemu-test/mps2-an386-$num-motor4kw"
 done
+# The real-time criterion fails make test: the overrun test image with
+# every fast tick some 200 instructions longer no longer keeps real time at
+# the shift the image claims.
+run "qemu mps2-an386-fixed simulation, slowed fast tick" fail \
+    env FW_RUN_ARGS=overrun=slowed sh tools/qemu-sim-test.sh mps2-an386 fixed \
+    "$BUILD/cortexm-mps2-an386-fixed/uuvsim_overrun.elf" "$BUILD/linux-fixed/uuvsim" \
+    "$BUILD/qemu-test/mps2-an386-fixed-slowed"
 run "qemu mps2-an386-fixed overruns, bad input" pass sh tools/qemu-overrun-test.sh \
     mps2-an386 "$BUILD/cortexm-mps2-an386-fixed/uuvsim_overrun.elf" "$BUILD/linux-fixed/uuvsim" \
     "$BUILD/qemu-test/overrun"

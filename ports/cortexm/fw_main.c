@@ -73,7 +73,9 @@ static uint16_t fw_seq;
 /*
  * A test build (FW_OVERRUN_TEST=1) accepts overrun=fast|medium|slow on the
  * command line and then makes the first step of that rate run long, to
- * show that each level's overrun stops the run cleanly and is reported.
+ * show that each level's overrun stops the run cleanly and is reported;
+ * overrun=slowed makes every fast tick longer, to show that make test
+ * fails an image that no longer keeps real time at its claimed shift.
  */
 #ifndef FW_OVERRUN_TEST
 #define FW_OVERRUN_TEST 0
@@ -88,7 +90,14 @@ enum { FW_RATE_FAST, FW_RATE_MEDIUM, FW_RATE_SLOW, FW_RATES };
 static const uint32_t fw_spin_count[FW_RATES] = {2000u, 100000u, 20000000u};
 static bool fw_spin_armed[FW_RATES];
 
+/* overrun=slowed: every fast tick some 200 instructions longer, not only the first. */
+static bool fw_slowed;
+
 static void fw_spin_once(int rate) {
+    if (rate == FW_RATE_FAST && fw_slowed) {
+        for (volatile uint32_t i = 0; i < 40u; i = i + 1u) {
+        }
+    }
     if (fw_spin_armed[rate]) {
         fw_spin_armed[rate] = false;
         for (volatile uint32_t i = 0; i < fw_spin_count[rate]; i = i + 1u) {
@@ -307,6 +316,7 @@ __attribute__((noinline)) static bool fw_parse_args(fw_args *a) {
             for (int r = 0; r < FW_RATES; r++) {
                 fw_spin_armed[r] = parse_word_is(t + at, tok[i].len - at, rates[r]);
             }
+            fw_slowed = parse_word_is(t + at, tok[i].len - at, "slowed");
 #endif
         } else if (i > 0u) {
             return fw_fail("unknown word on the command line: ", t);
