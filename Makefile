@@ -86,7 +86,8 @@ $(1)_FAIL_O := $$(filter-out %/test_harness.o,$$($(1)_TEST_O)) $$($(1)_DIR)/obj-
 $$($(1)_DIR)/obj/src/%.o: XFLAGS := -ffreestanding
 $$($(1)_DIR)/obj/src/drive_fast_run.o: XFLAGS := -ffreestanding $$(if $$(findstring gcc,$(2)),$(DESK_RUN_GCC_FLAGS))
 
-# The variant's compiler flags, rewritten only when they change: every
+# The variant's compiler flags and the lists of files that take the fast and
+# the size flags, rewritten only when they change: every
 # object depends on them, so that a changed HOST_OPT rebuilds the variant.
 $$($(1)_DIR)/cflags: FORCE
 	@mkdir -p $$(@D)
@@ -174,7 +175,14 @@ ARM_COMMON := $(COMMON) -O2 -g -ffreestanding -fno-tree-loop-distribute-patterns
 # or manoeuvre metrics, none of which the firmware runs.
 # (Objects are rebuilt when it changes: the variant's cflags file.)
 FW_FAST_KERNEL ?= 1
-FW_FAST_C := src/drive_segment_fixed.c src/drive_segment_float.c src/executive.c
+# FW_FAST_C: every file with code on the fast tick's path (the handlers,
+# the executive's tick, the drive's step and boundary, the models it
+# calls); tools/fw-flags.sh checks each image after linking and fails the
+# build when a function on that path comes from a file not in this list.
+FW_FAST_C := src/drive_segment_fixed.c src/drive_segment_float.c src/executive.c \
+             ports/cortexm/hal_cortexm.c ports/cortexm/fw_main.c \
+             $(wildcard src/models/drive/pwm/*.c src/models/drive/inverter/*.c) \
+             src/models/drive/motor/induction_motor_q.c src/models/drive/motor/induction_motor_f32.c
 FW_FAST_FLAGS := -fno-schedule-insns -fno-tree-pre -fno-optimize-sibling-calls
 FW_SCENARIO_EVENTS ?= 64
 FW_STACK_BYTES ?= 3328
@@ -220,13 +228,14 @@ $(1)-$(2)_SIM_O := $$(patsubst %.c,$$($(1)-$(2)_DIR)/obj/%.o,$(FW_SIM_C))
 $(1)-$(2)_FAIL_O := $$(filter-out %/test_harness.o,$$($(1)-$(2)_TEST_O)) \
     $$($(1)-$(2)_DIR)/obj-mustfail/test_harness.o
 
-# The variant's compiler flags, rewritten only when they change: every
+# The variant's compiler flags and the lists of files that take the fast and
+# the size flags, rewritten only when they change: every
 # object depends on them, so that a flag given on the command line
 # (FW_FAST_KERNEL=0, FW_SCENARIO_EVENTS=...) rebuilds what it changes.
 $$($(1)-$(2)_DIR)/cflags: FORCE
 	@mkdir -p $$(@D)
 	@printf '%s\n' '$$(subst ','\'',$(ARM_CC) $$($(1)-$(2)_CFLAGS) $(7) $(FW_FAST_FLAGS))' \
-	    > $$@.tmp
+	    'fast: $(FW_FAST_C)' 'size: $(FW_SIZE_C)' > $$@.tmp
 	@cmp -s $$@.tmp $$@ || mv $$@.tmp $$@
 	@rm -f $$@.tmp
 
@@ -278,12 +287,14 @@ $$($(1)-$(2)_DIR)/uuvsim.elf: $$($(1)-$(2)_SRC_O) $$($(1)-$(2)_SIM_O) ldscripts/
         $(BUILD)/gen/fw_params.name
 	$(ARM_CC) $$($(1)-$(2)_LDFLAGS) -Wl,--defsym=STACK_SIZE=$(FW_STACK_BYTES) \
 	    -Wl,-Map=$$(@:.elf=.map) -o $$@ $$(filter %.o,$$^) -lgcc
+	@sh tools/fw-flags.sh $$@ $$(@:.elf=.map) '$(FW_FAST_FLAGS)' >/dev/null || { rm -f $$@; exit 1; }
 
 # The image with a shipped set: params/NAME.params as uuvsim-NAME.elf.
 $$($(1)-$(2)_DIR)/uuvsim-%.elf: $$($(1)-$(2)_SRC_O) $$($(1)-$(2)_DIR)/obj/ports/cortexm/fw_main.o \
         $$($(1)-$(2)_DIR)/obj/$(BUILD)/gen/params/%.o ldscripts/$(1).ld
 	$(ARM_CC) $$($(1)-$(2)_LDFLAGS) -Wl,--defsym=STACK_SIZE=$(FW_STACK_BYTES) \
 	    -Wl,-Map=$$(@:.elf=.map) -o $$@ $$(filter %.o,$$^) -lgcc
+	@sh tools/fw-flags.sh $$@ $$(@:.elf=.map) '$(FW_FAST_FLAGS)' >/dev/null || { rm -f $$@; exit 1; }
 
 -include $$(wildcard $$($(1)-$(2)_DIR)/obj/*/*.d $$($(1)-$(2)_DIR)/obj/*/*/*.d \
     $$($(1)-$(2)_DIR)/obj/*/*/*/*.d $$($(1)-$(2)_DIR)/obj/*/*/*/*/*.d $$($(1)-$(2)_DIR)/obj/*/*/*/*/*/*.d $$($(1)-$(2)_DIR)/obj-part*/*.d)

@@ -94,6 +94,7 @@ void suite_fast_kernel(void) {
     c.modulator = DRIVE_MODULATOR_SAMPLED; /* the step the kernel computes (drive_segment.h) */
     c.down = COUPLE_ZOH;
     c.up = COUPLE_AVG;
+    c.modulator = DRIVE_MODULATOR_SAMPLED; /* the step the kernel computes */
     c.fast_ns = 2000u;
     c.fast_per_medium = 50u;
     c.medium_per_control = 8u;
@@ -143,6 +144,11 @@ void suite_fast_kernel(void) {
     ker.plain = false; /* as a fault or a trip leaves it */
     drive_use_fast_kernel(&ker, drive_fast_kernel_v7m);
     UT_CHECK(ker.fast_now == NULL);
+    /* The sub-step modulator is the C's only: no kernel for it. */
+    c.modulator = DRIVE_MODULATOR_SUBSTEP;
+    UT_CHECK(drive_init(&ker, &c, &prop) == DRIVE_OK);
+    drive_use_fast_kernel(&ker, drive_fast_kernel_v7m);
+    UT_CHECK(ker.plain && ker.fast_now == NULL);
 }
 
 #else
