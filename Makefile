@@ -180,7 +180,7 @@ FW_FAST_KERNEL ?= 1
 # calls); tools/fw-flags.sh checks each image after linking and fails the
 # build when a function on that path comes from a file not in this list.
 FW_FAST_C := src/drive_segment_fixed.c src/drive_segment_float.c src/executive.c \
-             ports/cortexm/hal_cortexm.c ports/cortexm/fw_main.c \
+             ports/cortexm/hal_cortexm.c ports/cortexm/fw_main.c src/fixedpoint/fixedpoint.c \
              $(wildcard src/models/drive/pwm/*.c src/models/drive/inverter/*.c) \
              src/models/drive/motor/induction_motor_q.c src/models/drive/motor/induction_motor_f32.c
 FW_FAST_FLAGS := -fno-schedule-insns -fno-tree-pre -fno-optimize-sibling-calls
@@ -215,6 +215,10 @@ $(BUILD)/gen/part%/suites.inc: FORCE
 
 define fw_variant
 $(1)-$(2)_DIR := $(BUILD)/cortexm-$(1)-$(2)
+# The fast tick's flags: all of them for the images with a 2 us budget;
+# the Cortex-M3's (built for size, OPT) keep only the one their
+# measurement needs (each measured function returns through its own exit).
+$(1)-$(2)_FAST_FLAGS := $(if $(7),-fno-optimize-sibling-calls,$(FW_FAST_FLAGS))
 $(1)-$(2)_KERNEL := $$(if $$(filter fixed,$(2)),$$(if $$(findstring cortex-m3,$(3)),0,$(FW_FAST_KERNEL)),0)
 $(1)-$(2)_CFLAGS := $(ARM_COMMON) $(3) -DUUV_NUMERIC=$(NUM_$(2)) -DUUV_TARGET_HAS_FPU=$(4) \
     -DSCENARIO_MAX_EVENTS=$(FW_SCENARIO_EVENTS)u -DBOARD_NAME='"$(1)"' $(INC) -Iports/cortexm \
@@ -234,7 +238,7 @@ $(1)-$(2)_FAIL_O := $$(filter-out %/test_harness.o,$$($(1)-$(2)_TEST_O)) \
 # (FW_FAST_KERNEL=0, FW_SCENARIO_EVENTS=...) rebuilds what it changes.
 $$($(1)-$(2)_DIR)/cflags: FORCE
 	@mkdir -p $$(@D)
-	@printf '%s\n' '$$(subst ','\'',$(ARM_CC) $$($(1)-$(2)_CFLAGS) $(7) $(FW_FAST_FLAGS))' \
+	@printf '%s\n' '$$(subst ','\'',$(ARM_CC) $$($(1)-$(2)_CFLAGS) $(7) $$($(1)-$(2)_FAST_FLAGS))' \
 	    'fast: $(FW_FAST_C)' 'size: $(FW_SIZE_C)' > $$@.tmp
 	@cmp -s $$@.tmp $$@ || mv $$@.tmp $$@
 	@rm -f $$@.tmp
@@ -242,7 +246,7 @@ $$($(1)-$(2)_DIR)/cflags: FORCE
 $$($(1)-$(2)_DIR)/obj/%.o: %.c $$($(1)-$(2)_DIR)/cflags | $(BUILD)/gen/suites.inc
 	@mkdir -p $$(@D)
 	$(ARM_CC) $$($(1)-$(2)_CFLAGS) $$(or $(7),$$(if $$(filter $$<,$(FW_SIZE_C)),-Os)) \
-	    $$(if $$(filter $$<,$(FW_FAST_C)),$(FW_FAST_FLAGS)) -c $$< -o $$@
+	    $$(if $$(filter $$<,$(FW_FAST_C)),$$($(1)-$(2)_FAST_FLAGS)) -c $$< -o $$@
 
 # The fast kernel's offsets, from the C declarations (fast_kernel_offsets.c).
 $$($(1)-$(2)_DIR)/gen/fast_kernel_offsets.h: ports/cortexm/fast_kernel_offsets.c $(SRC_H) \
@@ -287,14 +291,16 @@ $$($(1)-$(2)_DIR)/uuvsim.elf: $$($(1)-$(2)_SRC_O) $$($(1)-$(2)_SIM_O) ldscripts/
         $(BUILD)/gen/fw_params.name
 	$(ARM_CC) $$($(1)-$(2)_LDFLAGS) -Wl,--defsym=STACK_SIZE=$(FW_STACK_BYTES) \
 	    -Wl,-Map=$$(@:.elf=.map) -o $$@ $$(filter %.o,$$^) -lgcc
-	@sh tools/fw-flags.sh $$@ $$(@:.elf=.map) '$(FW_FAST_FLAGS)' >/dev/null || { rm -f $$@; exit 1; }
+	@sh tools/fw-flags.sh $$@ $$(@:.elf=.map) '$$($(1)-$(2)_FAST_FLAGS)' >/dev/null || \
+	    { rm -f $$@; exit 1; }
 
 # The image with a shipped set: params/NAME.params as uuvsim-NAME.elf.
 $$($(1)-$(2)_DIR)/uuvsim-%.elf: $$($(1)-$(2)_SRC_O) $$($(1)-$(2)_DIR)/obj/ports/cortexm/fw_main.o \
         $$($(1)-$(2)_DIR)/obj/$(BUILD)/gen/params/%.o ldscripts/$(1).ld
 	$(ARM_CC) $$($(1)-$(2)_LDFLAGS) -Wl,--defsym=STACK_SIZE=$(FW_STACK_BYTES) \
 	    -Wl,-Map=$$(@:.elf=.map) -o $$@ $$(filter %.o,$$^) -lgcc
-	@sh tools/fw-flags.sh $$@ $$(@:.elf=.map) '$(FW_FAST_FLAGS)' >/dev/null || { rm -f $$@; exit 1; }
+	@sh tools/fw-flags.sh $$@ $$(@:.elf=.map) '$$($(1)-$(2)_FAST_FLAGS)' >/dev/null || \
+	    { rm -f $$@; exit 1; }
 
 -include $$(wildcard $$($(1)-$(2)_DIR)/obj/*/*.d $$($(1)-$(2)_DIR)/obj/*/*/*.d \
     $$($(1)-$(2)_DIR)/obj/*/*/*/*.d $$($(1)-$(2)_DIR)/obj/*/*/*/*/*.d $$($(1)-$(2)_DIR)/obj/*/*/*/*/*/*.d $$($(1)-$(2)_DIR)/obj-part*/*.d)
