@@ -52,19 +52,25 @@ check "results.json: 16 runs" sh -c "[ \$(grep -c '\"run\": ' '$tmp/full/results
 check "more strings, less of the charge drawn (final.soc rises with battery.n_parallel)" sh -c \
     "awk -F, 'NR > 1 && \$5 == \"1e-3\" { soc[\$4] = \$10 } END { exit !(soc[1] < soc[2] && soc[2] < soc[4] && soc[4] < soc[8]) }' '$tmp/full/results.csv'"
 
-# Killed halfway (SIGKILL: no clean-up), then resumed.
-"$uuvsim" sweep "$tmp/s.sweep" --out "$tmp/killed" -j 2 2>/dev/null &
+# Killed halfway, then resumed: SIGKILL to the sweep and the runs under way at once (its
+# own process group, as a batch system cancels a job), so nothing is cleaned up and the
+# runs' scratch files are left half written.
+setsid "$uuvsim" sweep "$tmp/s.sweep" --out "$tmp/killed" -j 2 2>/dev/null &
 pid=$!
 n=0
 while [ "$(ls "$tmp/killed/runs" 2>/dev/null | grep -c '\.row$')" -lt 6 ] && [ $n -lt 600 ]; do
     sleep 0.05; n=$((n + 1))
 done
-kill -9 $pid 2>/dev/null
+kill -9 -$pid 2>/dev/null
 wait $pid 2>/dev/null
+n=0
+while kill -0 -$pid 2>/dev/null && [ $n -lt 600 ]; do # until the whole group is gone
+    sleep 0.05; n=$((n + 1))
+done
 done_rows=$(ls "$tmp/killed/runs" | grep -c '\.row$')
 [ "$done_rows" -ge 6 ] && [ "$done_rows" -lt 16 ] && [ ! -f "$tmp/killed/results.csv" ] &&
-    ok "killed halfway: $done_rows of 16 rows, no results yet" || no "killed: $done_rows rows"
-sleep 1 # the killed sweep's runs still under way finish (their rows are never written)
+    ! kill -0 -$pid 2>/dev/null &&
+    ok "killed halfway: $done_rows of 16 rows, no results yet, no run left" || no "killed: $done_rows rows"
 check "resumed: the same command completes it" "$uuvsim" sweep "$tmp/s.sweep" --out "$tmp/killed" -j 2
 cp "$tmp/err" "$tmp/resume.err"
 check "resumed: it ran only the runs without a row" grep -q "$((16 - done_rows)) to run ($done_rows done before)" "$tmp/resume.err"
