@@ -4,11 +4,15 @@
 #   test_soak.sh UUVSIM DURATION
 # Checks that the run completes with no NaN or Inf in the records, no
 # saturation and no overrun; that the energy balance closes (battery energy
-# at the terminals = filter losses + motor losses + shaft work, residual
-# within 0.6 % of the battery's); and that there is no drift: the last
-# pattern reproduces the first (means over the last 10 s of the 1200 rpm and
-# the 800 rpm legs: shaft speed within 0.2 %, surge speed within 0.05 %,
-# torque and current within 1 %; only the battery's charge may differ).
+# at the terminals = filter losses + motor losses + shaft work within 0.6 %
+# of the battery's energy: the residual is the multi-rate motor coupling's
+# energy error, what the filter delivers to the motor's fast companion and
+# the motor model does not absorb, 0.546 % after 600 s in both builds and
+# 0.49 % to 0.55 % from 120 s to 3600 s; docs/reliability.md, "Soak"); and
+# that there is no drift: the last pattern reproduces the first (means over
+# the last 10 s of the 1200 rpm and the 800 rpm legs: shaft speed within
+# 0.2 %, surge speed within 0.05 %, torque and current within 1 %; only the
+# battery's charge may differ).
 # Prints one line per check with the figures and "N passed, N failed".
 set -u
 uuvsim=$1
