@@ -94,7 +94,6 @@ void suite_fast_kernel(void) {
     c.modulator = DRIVE_MODULATOR_SAMPLED; /* the step the kernel computes (drive_segment.h) */
     c.down = COUPLE_ZOH;
     c.up = COUPLE_AVG;
-    c.modulator = DRIVE_MODULATOR_SAMPLED; /* the step the kernel computes */
     c.fast_ns = 2000u;
     c.fast_per_medium = 50u;
     c.medium_per_control = 8u;
