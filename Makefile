@@ -180,7 +180,7 @@ FW_FAST_KERNEL ?= 1
 # calls); tools/fw-flags.sh checks each image after linking and fails the
 # build when a function on that path comes from a file not in this list.
 FW_FAST_C := src/drive_segment_fixed.c src/drive_segment_float.c src/executive.c \
-             ports/cortexm/hal_cortexm.c ports/cortexm/fw_main.c src/fixedpoint/fixedpoint.c \
+             ports/cortexm/hal_cortexm.c ports/cortexm/fw_main.c \
              $(wildcard src/models/drive/pwm/*.c src/models/drive/inverter/*.c) \
              src/models/drive/motor/induction_motor_q.c src/models/drive/motor/induction_motor_f32.c
 FW_FAST_FLAGS := -fno-schedule-insns -fno-tree-pre -fno-optimize-sibling-calls

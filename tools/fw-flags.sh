@@ -23,21 +23,30 @@ READELF=${ARM_READELF:-arm-none-eabi-readelf}
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
 
-# Call edges "caller callee" from the disassembly: bl/b/b.w to <name>.
+# Functions by address (static functions of the same name in two files
+# stay apart): "ADDRESS NAME" of each, and call edges "CALLER CALLEE" by
+# address from bl/b/b.w to the start of another function.
 "$OBJDUMP" -d --no-show-raw-insn "$elf" | awk '
-    /^[0-9a-f]+ <[^>]+>:$/ { f = $2; gsub(/[<>:]/, "", f); next }
+    /^[0-9a-f]+ <[^>]+>:$/ { f = $1 + 0; a = $1; n = $2; gsub(/[<>:]/, "", n)
+        sub(/^0+/, "", a); print "F", a, n; cur = a; next }
     /\t(bl|b|b\.w|b\.n)\t[0-9a-f]+ <[^>+]+>/ {
-        t = $0; sub(/.*</, "", t); sub(/>.*/, "", t)
-        if (t != f) print f, t
-    }' >"$tmp/edges"
+        t = $0; sub(/^[^\t]*\t[^\t]*\t/, "", t); sub(/ .*/, "", t); sub(/^0+/, "", t)
+        if (t != cur) print "E", cur, t
+    }' >"$tmp/dis"
+awk '$1 == "F" { print $2, $3 }' "$tmp/dis" >"$tmp/funcs"
+awk '$1 == "E" { print $2, $3 }' "$tmp/dis" >"$tmp/edges"
+addr() { awk -v n="$1" '$2 == n { print $1 }' "$tmp/funcs"; }
 # The pointer calls: the HAL's tick handler to the port's (fw_fast), the
 # fast step (drive_fast_step, through d->fast_now) to the C or the kernel.
-echo "SysTick_Handler fw_fast" >>"$tmp/edges"
-echo "exec_fast_tick drive_fast_tick" >>"$tmp/edges"
-echo "exec_fast_tick drive_fast_kernel_v7m" >>"$tmp/edges"
+for a in $(addr SysTick_Handler); do for b in $(addr fw_fast); do echo "$a $b"; done; done \
+    >>"$tmp/edges"
+for a in $(addr exec_fast_tick); do
+    for b in $(addr drive_fast_tick) $(addr drive_fast_kernel_v7m); do echo "$a $b"; done
+done >>"$tmp/edges"
 
 # Functions reachable from the SysTick handler.
-echo SysTick_Handler >"$tmp/reach"
+addr SysTick_Handler >"$tmp/reach"
+[ -s "$tmp/reach" ] || { echo "fw-flags: $elf: no SysTick_Handler" >&2; exit 2; }
 while :; do
     awk 'NR == FNR { r[$1] = 1; next } ($1 in r) && !($2 in r) { print $2; r[$2] = 1 }' \
         "$tmp/reach" "$tmp/edges" | sort -u >"$tmp/new"
@@ -45,11 +54,12 @@ while :; do
     cat "$tmp/new" >>"$tmp/reach"
 done
 
-# Object file of each function: the map's ".text.NAME" input section (the
-# address and object may follow on the next line).
-awk '/^ \.text\./ { name = $1; sub(/^\.text\./, "", name)
-        if (NF >= 4) { print name, $4; name = "" } ; next }
-     name != "" && NF >= 3 { print name, $3; name = "" }' "$map" >"$tmp/objs"
+# Object file of each input section by its address: the map's ".text.NAME"
+# lines (the address and object may follow on the next line).
+awk '/^ \.text\./ { if (NF >= 4) { print $2, $4; pend = 0 } else pend = 1; next }
+     pend && NF >= 3 && $1 ~ /^0x/ { print $1, $3; pend = 0; next }
+     { pend = 0 }' "$map" |
+    awk '{ a = $1; sub(/^0x0*/, "", a); print a, $2 }' >"$tmp/objs"
 
 # Compiler flags of each C source: DW_AT_name and DW_AT_producer of each unit.
 "$READELF" --debug-dump=info "$elf" 2>/dev/null | awk '
@@ -60,8 +70,9 @@ awk '/^ \.text\./ { name = $1; sub(/^\.text\./, "", name)
 
 bad=0
 checked=0
-while read -r fn; do
-    obj=$(awk -v f="$fn" '$1 == f { print $2; exit }' "$tmp/objs")
+while read -r at; do
+    fn=$(awk -v a="$at" '$1 == a { print $2; exit }' "$tmp/funcs")
+    obj=$(awk -v a="$at" '$1 == a { print $2; exit }' "$tmp/objs")
     case $obj in
         */obj/*.o) src=${obj#*/obj/}; src=${src%.o} ;;
         *) continue ;; # libgcc, or a symbol without a section of its own
