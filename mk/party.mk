@@ -7,19 +7,21 @@
 #       OUT/telemetry.csv (the desk's --csv, byte for byte), OUT/console.txt
 #
 # The drive's image, uuvsim_party.elf beside each variant's uuvsim.elf, is
-# ports/cortexm/fw_main.c built with FW_PARTY=1: the normal images hold
-# none of the link's code.
+# ports/cortexm/fw_main.c built with FW_PARTY=1 (and the fast path's
+# flags, checked as in every image: tools/fw-flags.sh): the normal images
+# hold none of the link's code.
 
 # $(call party_image,MACHINE-NUM)
 define party_image
 $$($(1)_DIR)/obj-party/fw_main.o: ports/cortexm/fw_main.c $$($(1)_DIR)/cflags
 	@mkdir -p $$(@D)
-	$(ARM_CC) $$($(1)_CFLAGS) -Os -DFW_PARTY=1 -c $$< -o $$@
+	$(ARM_CC) $$($(1)_CFLAGS) $(FW_FAST_FLAGS) -DFW_PARTY=1 -c $$< -o $$@
 
 $$($(1)_DIR)/uuvsim_party.elf: $$($(1)_SRC_O) $$($(1)_DIR)/obj-party/fw_main.o \
         $$(filter-out %/fw_main.o,$$($(1)_SIM_O))
 	$(ARM_CC) $$($(1)_LDFLAGS) -Wl,--defsym=STACK_SIZE=$(FW_STACK_BYTES) \
 	    -Wl,-Map=$$(@:.elf=.map) -o $$@ $$(filter %.o,$$^) -lgcc
+	@sh tools/fw-flags.sh $$@ $$(@:.elf=.map) '$(FW_FAST_FLAGS)' >/dev/null || { rm -f $$@; exit 1; }
 
 -include $$(wildcard $$($(1)_DIR)/obj-party/*.d)
 FW_PARTY_IMAGES += $$($(1)_DIR)/uuvsim_party.elf
