@@ -15,13 +15,13 @@
 define party_image
 $$($(1)_DIR)/obj-party/fw_main.o: ports/cortexm/fw_main.c $$($(1)_DIR)/cflags
 	@mkdir -p $$(@D)
-	$(ARM_CC) $$($(1)_CFLAGS) $(FW_FAST_FLAGS) -DFW_PARTY=1 -c $$< -o $$@
+	$(ARM_CC) $$($(1)_CFLAGS) $$($(1)_FAST_FLAGS) -DFW_PARTY=1 -c $$< -o $$@
 
 $$($(1)_DIR)/uuvsim_party.elf: $$($(1)_SRC_O) $$($(1)_DIR)/obj-party/fw_main.o \
         $$(filter-out %/fw_main.o,$$($(1)_SIM_O))
 	$(ARM_CC) $$($(1)_LDFLAGS) -Wl,--defsym=STACK_SIZE=$(FW_STACK_BYTES) \
 	    -Wl,-Map=$$(@:.elf=.map) -o $$@ $$(filter %.o,$$^) -lgcc
-	@sh tools/fw-flags.sh $$@ $$(@:.elf=.map) '$(FW_FAST_FLAGS)' >/dev/null || { rm -f $$@; exit 1; }
+	@sh tools/fw-flags.sh $$@ $$(@:.elf=.map) '$$($(1)_FAST_FLAGS)' >/dev/null || { rm -f $$@; exit 1; }
 
 -include $$(wildcard $$($(1)_DIR)/obj-party/*.d)
 FW_PARTY_IMAGES += $$($(1)_DIR)/uuvsim_party.elf
