@@ -347,12 +347,19 @@ bool scenario_parse(scenario *s, const char *text, size_t n, scenario_error *err
     *s = (scenario){0};
     s->zigzag.stop_s = -1.0;
     *err = (scenario_error){0};
-    parser p = {s, err, 0u, {0u}};
+    parser p;
+    p.s = s;
+    p.err = err;
+    p.line = 0u;
+    for (size_t k = 0u; k < (size_t)VESSEL_NSTATES; k++) {
+        p.init_line[k] = 0u;
+    }
     /* A UTF-8 byte-order mark at the start is no text. */
-    size_t start = (n >= 3u && (unsigned char)text[0] == 0xEFu &&
-                    (unsigned char)text[1] == 0xBBu && (unsigned char)text[2] == 0xBFu)
-                       ? 3u
-                       : 0u;
+    size_t start = 0u;
+    if (n >= 3u && (unsigned char)text[0] == 0xEFu && (unsigned char)text[1] == 0xBBu &&
+        (unsigned char)text[2] == 0xBFu) {
+        start = 3u;
+    }
     while (start < n) {
         /* A line ends at LF, CR LF or a CR alone. */
         size_t end = start;

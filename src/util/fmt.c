@@ -362,13 +362,26 @@ void fmt_print(const char *format, ...) {
 static size_t utf8_decode(const unsigned char *s, size_t n, uint32_t *cp) {
     static const uint32_t least[4] = {0u, 0x80u, 0x800u, 0x10000u};
     const unsigned char b = s[0];
-    size_t len = (b < 0x80u) ? 1u : (b >= 0xC0u && b < 0xE0u) ? 2u
-                              : (b >= 0xE0u && b < 0xF0u) ? 3u
-                              : (b >= 0xF0u && b < 0xF8u) ? 4u : 0u;
+    size_t len = 0u;
+    if (b < 0x80u) {
+        len = 1u;
+    } else if (b >= 0xC0u && b < 0xE0u) {
+        len = 2u;
+    } else if (b >= 0xE0u && b < 0xF0u) {
+        len = 3u;
+    } else if (b >= 0xF0u && b < 0xF8u) {
+        len = 4u;
+    } else {
+        len = 0u;
+    }
     if (len == 0u || len > n) {
         return 0u;
     }
-    uint32_t c = (len == 1u) ? b : (uint32_t)b & (0x7Fu >> len);
+    const uint32_t lead_bits = 0x7Fu >> (uint32_t)len; /* the lead byte's payload */
+    uint32_t c = (uint32_t)b;
+    if (len > 1u) {
+        c &= lead_bits;
+    }
     for (size_t i = 1u; i < len; i++) {
         if ((s[i] & 0xC0u) != 0x80u) {
             return 0u;
@@ -411,7 +424,7 @@ size_t fmt_text_safe(char *buf, size_t cap, const char *text, size_t n) {
             for (int shift = 12; shift >= 0; shift -= 4) {
                 unit[u++] = hex[(c >> (unsigned)shift) & 15u];
             }
-        } else if (c == '\\') {
+        } else if (c == 0x5Cu) { /* the backslash */
             unit[u++] = '\\';
             unit[u++] = '\\';
         } else {
