@@ -16,6 +16,11 @@ MAKEFLAGS += --no-builtin-rules
 .DEFAULT_GOAL := all
 
 BUILD ?= build
+# Every build uses all the cores unless the command line gives -j (make
+# alone builds both desk simulators in under half a minute on two cores).
+ifeq ($(filter -j% j%,$(MAKEFLAGS)),)
+MAKEFLAGS += -j$(shell nproc 2>/dev/null || echo 2)
+endif
 CC ?= gcc
 ifeq ($(origin CC),default)
 CC := gcc
@@ -386,7 +391,9 @@ $(HOST_BENCHES): $(BUILD)/tools/%: tests/host/%.c $(linux-fixed_SRC_O)
 
 .PHONY: all firmware host-all host-benches tools test test-run check-tables run view bench clean deps
 
-all: $(foreach v,linux-fixed linux-float,$(BUILD)/$(v)/unit_tests $(BUILD)/$(v)/uuvsim)
+# make: the desk simulator in both numeric builds (the unit tests and the
+# rest come with make test).
+all: $(foreach v,linux-fixed linux-float,$(BUILD)/$(v)/uuvsim)
 
 host-all: $(foreach v,$(HOST_VARIANTS),$(BUILD)/$(v)/unit_tests $(BUILD)/$(v)/uuvsim) \
           $(BUILD)/linux-fixed/unit_tests_mustfail \
