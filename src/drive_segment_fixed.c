@@ -208,11 +208,7 @@ static inline void fast_phase_plain(drive_segment *d, ps_fast_q *f, int x) {
 
 /* The real-time modulator's duties for the step (pwm_rt.h): sub-step or sampled. */
 static inline void rt_duties_plain(drive_segment *d, int32_t duty[3]) {
-    if (d->cfg.modulator == DRIVE_MODULATOR_SAMPLED) {
-        pwm_rt_sampled(&d->rt, d->s, duty);
-    } else {
-        pwm_rt_substep(&d->rt, d->s, duty);
-    }
+    pwm_rt_duties(&d->rt, d->cfg.modulator == DRIVE_MODULATOR_SAMPLED, d->s, duty);
 }
 
 /*

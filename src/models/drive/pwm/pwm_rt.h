@@ -181,6 +181,15 @@ static inline void pwm_rt_substep(pwm_rt *p, int32_t s[3], int32_t duty[3]) {
     pwm_rt_advance(p);
 }
 
+/* One step by the modulator in force: sampled, or sub-step (no dead time). */
+static inline void pwm_rt_duties(pwm_rt *p, bool sampled, int32_t s[3], int32_t duty[3]) {
+    if (sampled) {
+        pwm_rt_sampled(p, s, duty);
+    } else {
+        pwm_rt_substep(p, s, duty);
+    }
+}
+
 /*
  * The same with the dead time p->kd and the phase currents that decide
  * which edges it delays: neg[x] nonzero when leg x's current flows into
