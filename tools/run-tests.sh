@@ -20,9 +20,20 @@ qemu_cmd() { # machine image
          "-kernel $2"
 }
 
-# run LABEL EXPECT(pass|fail) COMMAND...
-run() {
-    label=$1; expect=$2; shift 2
+# The rows run $TEST_JOBS at a time (default: the machine's cores), each in
+# the background with its own log; a row's line is printed once it and every
+# row before it are done, so the output keeps the order below. Rows that
+# run make themselves (serial) wait for the others and run alone.
+TEST_JOBS=${TEST_JOBS:-$(nproc 2>/dev/null || echo 1)}
+rows="$logs/.rows"
+rm -rf "$rows"
+mkdir -p "$rows"
+nrow=0       # rows started
+nprinted=0   # rows printed
+
+# one_row N LABEL EXPECT COMMAND...: runs a row, writes its line and counts.
+one_row() {
+    n=$1; label=$2; expect=$3; shift 3
     log="$logs/$(echo "$label" | tr ' /' '__').log"
     start=$(date +%s)
     "$@" >"$log" 2>&1 </dev/null
@@ -32,32 +43,76 @@ run() {
     p=$(echo "$counts" | sed -n 's/.*\b\([0-9][0-9]*\) passed.*/\1/p')
     f=$(echo "$counts" | sed -n 's/.* \([0-9][0-9]*\) failed.*/\1/p')
     p=${p:-0}; f=${f:-0}
+    bad=0
     if [ "$expect" = pass ]; then
         if [ $status -eq 0 ] && [ "$f" -eq 0 ] && [ -n "$counts" ]; then
             verdict=ok
         else
-            verdict=FAILED; runs_bad=$((runs_bad + 1))
+            verdict=FAILED; bad=1
             [ "$f" -eq 0 ] && f=1
         fi
-        total_pass=$((total_pass + p)); total_fail=$((total_fail + f))
     else
         # A must-fail run passes when the program failed and said so.
         if [ $status -ne 0 ] && [ "$f" -gt 0 ]; then
             verdict="ok: must fail, and its planted failure was seen (proves failures count)"
-            total_pass=$((total_pass + 1))
+            p=1; f=0
         else
             verdict="FAILED (a failing check went unseen)"
-            runs_bad=$((runs_bad + 1)); total_fail=$((total_fail + 1))
+            bad=1; p=0; f=1
         fi
     fi
     [ "$expect" = fail ] && counts="${counts:+planted: }$counts"
-    printf '%-44s %-26s %4ss  %s\n' "$label" "${counts:-no result line}" "$secs" "$verdict"
-    if [ "$verdict" = FAILED ]; then
-        grep -E 'FAIL|fatal|error' "$log" | head -n 20 | sed 's/^/    /'
-    fi
+    {
+        printf '%-44s %-26s %4ss  %s\n' "$label" "${counts:-no result line}" "$secs" "$verdict"
+        case $verdict in
+            FAILED*) grep -E 'FAIL|fatal|error' "$log" | head -n 20 | sed 's/^/    /' ;;
+        esac
+    } >"$rows/$n.line"
+    echo "$p $f $bad" >"$rows/$n.counts"
+    : >"$rows/$n.done"
 }
 
-echo "== host =="
+# Prints the finished rows that follow the last printed one.
+flush_rows() {
+    while [ $nprinted -lt $nrow ] && [ -e "$rows/$((nprinted + 1)).done" ]; do
+        nprinted=$((nprinted + 1))
+        cat "$rows/$nprinted.line"
+    done
+}
+
+# Waits until fewer than $1 rows are running.
+wait_rows() {
+    while :; do
+        flush_rows
+        running=$((nrow - $(ls "$rows" | grep -c '\.done$')))
+        [ $running -lt "$1" ] && break
+        sleep 0.2
+    done
+}
+
+# run LABEL EXPECT(pass|fail) COMMAND...
+run() {
+    wait_rows "$TEST_JOBS"
+    nrow=$((nrow + 1))
+    one_row $nrow "$@" &
+}
+
+# serial LABEL EXPECT COMMAND...: a row that runs alone.
+serial() {
+    wait_rows 1
+    nrow=$((nrow + 1))
+    one_row $nrow "$@"
+    flush_rows
+}
+
+# section TITLE: a heading, printed in its place among the rows.
+section() {
+    nrow=$((nrow + 1))
+    echo "$1" >"$rows/$nrow.line"
+    : >"$rows/$nrow.done"
+}
+
+section "== host =="
 for v in $HOST_VARIANTS; do
     run "host $v unit_tests" pass "$BUILD/$v/unit_tests"
 done
@@ -96,10 +151,10 @@ run "host wavetable_data.c = generator" pass "$BUILD/tools/gen_wavetables" --che
     src/fixedpoint/wavetable_data.c
 
 run "host lint (cppcheck MISRA, clang-tidy)" pass sh tools/lint.sh
-run "host fuzz corpus replay (ASan+UBSan)" pass make --no-print-directory BUILD="$BUILD" fuzz-replay
-run "host 60 s desk simulation (ASan+UBSan)" pass make --no-print-directory BUILD="$BUILD" san-sim
+serial "host fuzz corpus replay (ASan+UBSan)" pass make --no-print-directory BUILD="$BUILD" fuzz-replay
+serial "host 60 s desk simulation (ASan+UBSan)" pass make --no-print-directory BUILD="$BUILD" san-sim
 
-echo "== qemu =="
+section "== qemu =="
 for v in $FW_VARIANTS; do
     machine=${v%-*}
     # A machine whose flash cannot hold every suite runs them in parts.
@@ -114,7 +169,7 @@ run "qemu mps2-an385-fixed must-fail" fail \
 
 # The firmware simulation: each image runs the default scenario under
 # -icount and is compared with the desk simulator of its numeric build.
-echo "== qemu simulation (shift ${FW_TEST_SHIFT:-3}, ${FW_TEST_DURATION:-0.5} s) =="
+section "== qemu simulation (shift ${FW_TEST_SHIFT:-3}, ${FW_TEST_DURATION:-0.5} s) =="
 for v in $FW_VARIANTS; do
     machine=${v%-*}
     num=${v##*-}
@@ -151,6 +206,12 @@ for num in fixed float; do
         "${FW_DECODE:-$BUILD/tools/uuvsim-decode}" "$BUILD/qemu-test/party-$num"
 done
 
+wait
+flush_rows
+for c in "$rows"/*.counts; do
+    read -r p f bad <"$c"
+    total_pass=$((total_pass + p)); total_fail=$((total_fail + f)); runs_bad=$((runs_bad + bad))
+done
 echo "logs in $logs/"
 echo "$total_pass passed, $total_fail failed"
 [ $runs_bad -eq 0 ]
