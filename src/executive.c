@@ -594,8 +594,68 @@ void exec_desk_step(exec *e) {
     }
 }
 
+/*
+ * The averaged layer's frames (inverter averaged: one fast tick, one motor
+ * step and one controller step per frame, fast_per_medium and
+ * medium_per_control 1), up to max_ticks of them and at most up to a slow
+ * boundary's step: what exec_desk_step() runs for each, without the fast
+ * tick's gate, phase and release machinery, which has nothing to do at
+ * that frame (no fast step, no split, no stagger, no overrun on the desk).
+ * The boundary's latch and the averaged stage (drive_medium_begin()), the
+ * motor task (drive_medium_task()) and the controller task
+ * (drive_control_task()) run as exec_fast_tick(), exec_medium_tick() and
+ * exec_control_tick() run them, with the same counters, so the results are
+ * the same bits (suite executive checks it).
+ */
+static uint32_t desk_run_averaged(exec *e, uint32_t max_ticks) {
+    uint32_t n = 0u;
+    while (n < max_ticks) {
+        n++;
+        e->medium_left--;
+        const bool slow = e->slow_due;
+        e->rel_slow = slow;
+        drive_medium_begin(&e->drive, slow);
+        if (e->medium_left == 0u) {
+            e->fast_gate = EXEC_GATE_STOP;
+        }
+        e->slow_due = slow_count(e);
+        drive_medium_task(&e->drive, true, slow);
+        e->count.medium++;
+        if (slow) {
+            /* The motor task's hand-over (before the controller's command moves on). */
+            e->speed_report_rpm = e->player.speed_rpm;
+            e->slow_pending = true;
+        }
+        e->control_time_ns = e->count.medium * (uint64_t)e->cfg.fast_ns;
+        const double t = 1e-9 * (double)e->control_time_ns;
+        drive_speed_command(&e->drive, player_speed_at(&e->player, t) * RPM_TO_RADPS);
+        drive_control_task(&e->drive);
+        e->count.control++;
+        if (slow) {
+            exec_slow_step(e);
+            break;
+        }
+    }
+    return n;
+}
+
+/*
+ * The averaged layer at its own frame (init_frames()), between two events,
+ * with no record waiting to be taken (a lean run ends with a slow step,
+ * whose record would replace it).
+ */
+static bool desk_averaged(const exec *e) {
+    return DRIVE_OPTIONAL(e->cfg.inverter == DRIVE_INVERTER_AVERAGED) &&
+           e->cfg.plant == EXEC_PLANT_FULL && e->cfg.fast_per_medium == 1u &&
+           e->cfg.medium_per_control == 1u && e->fast_gate == 0u && !e->medium_busy &&
+           !e->control_busy && !e->slow_pending && e->medium_phase == 0u && !e->report_ready;
+}
+
 uint32_t exec_desk_run(exec *e, uint32_t max_ticks) {
     uint32_t n = 0u;
+    if (desk_averaged(e)) {
+        return desk_run_averaged(e, max_ticks);
+    }
     if (e->cfg.plant == EXEC_PLANT_FULL && e->fast_gate == 0u) {
         /* The ticks before the next event only step (exec_fast_tick()). */
         n = e->fast_event_at - e->fast_phase - 1u;

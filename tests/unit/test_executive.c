@@ -112,6 +112,7 @@ static bool same_results(const desk_result *a, const desk_result *b) {
     const drive_trace_row *q = &b->drive;
     bool same = (a->n == b->n) && (a->fast == b->fast) &&
                 (a->count.medium == b->count.medium) && (a->count.slow == b->count.slow) &&
+                (a->count.control == b->count.control) &&
                 (a->count.saturations == b->count.saturations) && p->v_dc == q->v_dc &&
                 p->i_dc == q->i_dc && p->n_rpm == q->n_rpm && p->te_nm == q->te_nm;
     for (int i = 0; same && i < 3; i++) {
@@ -126,7 +127,8 @@ static bool same_results(const desk_result *a, const desk_result *b) {
         const exec_frame *y = &b->rec[k];
         same = x->t_s == y->t_s && x->te_nm == y->te_nm && x->i_rms_a == y->i_rms_a &&
                x->v_dc_v == y->v_dc_v && x->i_batt_a == y->i_batt_a && x->soc == y->soc &&
-               x->m_index == y->m_index && x->f_hz == y->f_hz && x->trip == y->trip;
+               x->m_index == y->m_index && x->f_hz == y->f_hz && x->trip == y->trip &&
+               x->cmd[4] == y->cmd[4];
         for (int i = 0; same && i < VESSEL_NSTATES; i++) {
             same = (x->x[i] == y->x[i]);
         }
@@ -137,9 +139,12 @@ static bool same_results(const desk_result *a, const desk_result *b) {
 /*
  * exec_desk_run() against exec_desk_step(), the same bits: the real-time
  * path (runs of steps), staggered, the filter coupling and the event
- * inverter (the general step), the averaged layer, single-rate, with runs
- * of 1, 7 and as many ticks as it likes. 0.1 s, a slow frame; single-rate,
- * whose vessel steps every 2 us, 1.6 ms (records every 0.8 ms).
+ * inverter (the general step), the averaged layer (its lean frames,
+ * desk_run_averaged()), single-rate, with runs of 1, 7 and as many ticks as
+ * it likes. 0.2 s, two slow frames, with a speed command at the first slow
+ * boundary (the record takes the command in force before the controller's
+ * moves on); single-rate, whose vessel steps every 2 us, 1.6 ms (records
+ * every 0.8 ms).
  */
 /* The averaged layer's start-up against the switching run a (its battery energy e_batt_sw). */
 static void test_averaged(const exec_config *avg, const step_result *sw, double e_batt_sw) {
@@ -182,9 +187,12 @@ static void test_desk_runs(const exec_config *base) {
     };
     static const uint32_t runs[] = {UINT32_MAX, 7u, 1u};
     static desk_result one, many;
+    const char *text = "duration 2\nat 0 n_rpm=1000\nat 0.1 n_rpm=700\n";
+    scenario_error err;
+    UT_CHECK(scenario_parse(&scn, text, ut_text_len(text), &err));
     for (size_t c = 0; c < sizeof cases / sizeof cases[0]; c++) {
         exec_config cfg = *base;
-        cfg.duration_s = 0.1;
+        cfg.duration_s = 0.2;
         if (cases[c].single_rate) {
             cfg.duration_s = 0.0016;
             cfg.medium_per_slow = cfg.medium_per_control;
@@ -198,7 +206,8 @@ static void test_desk_runs(const exec_config *base) {
             continue;
         }
         run_desk(&cfg, 0u, &one);
-        UT_CHECK(ex.state == EXEC_DONE && one.n == (cases[c].single_rate ? 3u : 2u));
+        UT_CHECK(ex.state == EXEC_DONE && one.n == 3u);
+        UT_CHECK(cases[c].single_rate || one.rec[2].cmd[4] == 700.0);
         for (size_t k = 0; k < sizeof runs / sizeof runs[0]; k++) {
             run_desk(&cfg, runs[k], &many);
             UT_CHECK(ex.state == EXEC_DONE);
@@ -354,6 +363,7 @@ void suite_executive(void) {
     UT_TEST("the desk's runs of ticks (exec_desk_run) give the bits of one tick at a time: "
             "switching, staggered, filter coupling, event, averaged, single-rate");
     test_desk_runs(&cfg);
+    UT_CHECK(scenario_parse(&scn, text, ut_text_len(text), &err));
 
     UT_TEST("the scenario check: the vessel plant refuses the drive's faults, the averaged "
             "layer the four that end in blocked gates, each with its line and name");
