@@ -48,7 +48,7 @@ SUITES := $(patsubst tests/unit/test_%.c,%,$(sort $(wildcard tests/unit/test_*.c
 LINUX_PORT_C := $(sort $(wildcard ports/linux/hal_*.c))
 UUVSIM_C := ports/linux/uuvsim.c ports/linux/cli.c ports/linux/csv_out.c ports/linux/derivs.c \
             ports/linux/view.c ports/linux/live.c ports/linux/out_file.c ports/linux/paramset.c ports/linux/sweep.c \
-            ports/linux/party_host.c
+            ports/linux/party_host.c ports/linux/leap.c
 CORTEXM_PORT_C := ports/cortexm/startup.c ports/cortexm/hal_cortexm.c \
                   ports/cortexm/semihost.c ports/cortexm/libc_min.c
 
@@ -83,13 +83,14 @@ $(1)_CFLAGS := $(COMMON) $(4) -DUUV_NUMERIC=$(NUM_$(3)) -D_POSIX_C_SOURCE=200809
 $(1)_SRC_O := $$(patsubst %.c,$$($(1)_DIR)/obj/%.o,$(SRC_C) $(LINUX_PORT_C))
 $(1)_TEST_O := $$(patsubst %.c,$$($(1)_DIR)/obj/%.o,$(TEST_C))
 $(1)_UUVSIM_O := $$(patsubst %.c,$$($(1)_DIR)/obj/%.o,$(UUVSIM_C))
-$(1)_BENCH_O := $$($(1)_DIR)/obj/ports/linux/bench.o
+$(1)_BENCH_O := $$($(1)_DIR)/obj/ports/linux/bench.o $$($(1)_DIR)/obj/ports/linux/leap.o
 $(1)_PROP_O := $$($(1)_DIR)/obj/tests/host/property.o
 $(1)_FAIL_O := $$(filter-out %/test_harness.o,$$($(1)_TEST_O)) $$($(1)_DIR)/obj-mustfail/test_harness.o
 
 # src/ is compiled freestanding on the host too, which proves it needs no libc.
 $$($(1)_DIR)/obj/src/%.o: XFLAGS := -ffreestanding
 $$($(1)_DIR)/obj/src/drive_fast_run.o: XFLAGS := -ffreestanding $$(if $$(findstring gcc,$(2)),$(DESK_RUN_GCC_FLAGS))
+$$($(1)_DIR)/obj/ports/linux/leap.o: XFLAGS := $(LEAP_ARCH)
 
 # The variant's compiler flags and the lists of files that take the fast and
 # the size flags, rewritten only when they change: every
@@ -140,6 +141,11 @@ HOST_OPT := -O3 -g
 # (src/uuv_config.h, src/math/sqrt.c): the same bits as the integer version.
 HOST_SQRT := -DUUV_HW_SQRT_F64=1 -DUUV_HW_SQRT_F32=1 -fno-math-errno
 DESK_RUN_GCC_FLAGS := -fno-tree-pre
+# The desk's exact leaps (ports/linux/leap.c, --fast-path leap): their maps
+# in the build host's AVX2 and FMA when it has them (an x86-64 without them,
+# AArch64: the compiler's baseline vectors). Any width gives correct leaps;
+# a build's results do not vary from run to run. LEAP_ARCH= builds the baseline.
+LEAP_ARCH ?= $(shell grep -qw avx2 /proc/cpuinfo 2>/dev/null && grep -qw fma /proc/cpuinfo && echo -mavx2 -mfma)
 SAN_FLAGS := -O1 -g -fsanitize=address,undefined -fno-sanitize-recover=all -fno-omit-frame-pointer
 
 $(eval $(call host_variant,linux-fixed,$(CC),fixed,$(HOST_OPT),))

@@ -660,7 +660,11 @@ uint32_t exec_desk_run(exec *e, uint32_t max_ticks) {
         /* The ticks before the next event only step (exec_fast_tick()). */
         n = e->fast_event_at - e->fast_phase - 1u;
         n = (n < max_ticks) ? n : max_ticks;
-        drive_fast_run(&e->drive, n);
+        if (e->desk_run != NULL) {
+            e->desk_run(e->desk_ctx, &e->drive, n);
+        } else {
+            drive_fast_run(&e->drive, n);
+        }
         e->fast_phase += n;
     }
     if (n < max_ticks) {

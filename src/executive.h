@@ -208,6 +208,11 @@ typedef struct {
     exec_frame report;
     bool report_ready;
     exec_counters count;
+    /* The desk's runs of fast steps (exec_desk_run()): NULL for drive_fast_run(), or a
+     * port's replacement called as desk_run(desk_ctx, drive, n) (the Linux port's exact
+     * leaps, ports/linux/leap.h). Set after exec_init(); the firmware never sets it. */
+    void (*desk_run)(void *ctx, drive_segment *d, uint32_t n);
+    void *desk_ctx;
 } exec;
 
 extern const char *const exec_command_names[EXEC_NCMD];

@@ -131,6 +131,7 @@ for v in linux-fixed linux-float; do
     run "host $v parameter sets" pass sh tests/host/test_params.sh "$BUILD/$v/uuvsim"
     run "host $v sweeps, resume, shards" pass sh tests/host/test_sweep.sh "$BUILD/$v/uuvsim"
     run "host $v fault injection" pass sh tests/host/test_faults.sh "$BUILD/$v/uuvsim"
+    run "host $v exact leaps (--fast-path leap)" pass sh tests/host/test_leap.sh "$BUILD/$v/uuvsim"
     run "host $v soak, 600 s (make soak: 3600 s)" pass sh tests/host/test_soak.sh \
         "$BUILD/$v/uuvsim" 600
 done

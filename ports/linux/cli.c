@@ -81,6 +81,13 @@ const char cli_usage[] =
 /* The usage's second part (C99 bounds a string literal at 4095 characters). */
 const char cli_usage_studies[] =
     "\n"
+    "Desk speed (docs/multirate.md, \"Speed\"):\n"
+    "  --fast-path exact|leap   exact (default): the firmware's 2 us step, bit for\n"
+    "                           bit; leap: each stretch of steps between two\n"
+    "                           switching events as one map of the same model\n"
+    "                           (within float rounding of exact; float build only;\n"
+    "                           paths without leaps step as exact)\n"
+    "\n"
     "Parameter sets and studies (docs/studies.md):\n"
     "       uuvsim params [--params FILE] [--set KEY=VALUE]... [--emit-c FILE.c]\n"
     "       uuvsim sweep FILE --out DIR [-j N] [--shard K/N]\n"
@@ -145,6 +152,7 @@ static const opt_spec options[] = {
     {"--motor-frame", OPT_FRAME, NULL, FIELD(motor_frame_ns)},
     {"--control-frame", OPT_FRAME, NULL, FIELD(control_frame_ns)},
     {"--slow-frame", OPT_FRAME, NULL, FIELD(slow_frame_ns)},
+    {"--fast-path", OPT_CHOICE, "exact|leap", FIELD(fast_path)},
     {"--single-rate", OPT_FLAG, NULL, FIELD(exec.single_rate)},
     {"--deep-water", OPT_FLAG, NULL, FIELD(exec.deep_water)},
     {"--energy-audit", OPT_FLAG, NULL, FIELD(exec.energy_audit)},

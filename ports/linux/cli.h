@@ -11,6 +11,12 @@
 
 #include "executive.h"
 
+/* How the desk takes its runs of fast steps (--fast-path). */
+typedef enum {
+    CLI_FAST_EXACT = 0, /* the firmware's step, bit for bit */
+    CLI_FAST_LEAP       /* exact leaps between switching events (float build; leap.h) */
+} cli_fast_path;
+
 typedef enum { CLI_RUN, CLI_DERIVS, CLI_VIEW, CLI_HELP, CLI_VERSION, CLI_PARAMS } cli_action;
 
 #define CLI_MAX_SETS 64 /* --set options */
@@ -35,6 +41,7 @@ typedef struct {
     uint64_t slow_frame_ns;     /* --slow-frame; 0: the default */
     uint64_t dead_time_ns;      /* --dead-time; 0: not given (the set's pwm.dead_time) */
     char dead_time_set[48];     /* --dead-time as the override "pwm.dead_time=N ns" */
+    cli_fast_path fast_path;    /* --fast-path */
     bool realtime;
     bool view;                  /* --view: the live view (implies --realtime) */
     double view_port;           /* --view-port: its port on 127.0.0.1 (0: any free one) */

@@ -19,6 +19,7 @@
 
 #include "cli.h"
 #include "csv_out.h"
+#include "leap.h"
 #include "live.h"
 #include "math/umath.h"
 #include "paramset.h"
@@ -184,6 +185,16 @@ static void print_json(FILE *f_out, const run_result *r) {
     fprintf(f_out, "  \"plant\": \"%s\",\n  \"propulsion\": \"%s\",\n  \"inverter\": \"%s\",\n",
            plant_names[e->cfg.plant], law_names[e->cfg.propulsion],
            inverter_names[e->cfg.inverter]);
+    if (e->desk_run != NULL) {
+        /* Leap runs only: the exact path's summary keeps its bytes. */
+        const leap_stats ls = leap_stats_of(e);
+        fprintf(f_out, "  \"fast_path\": \"leap\",\n  \"leaps\": {\"leaps\": %llu, "
+                "\"steps_in_leaps\": %llu, \"steps_in_runs\": %llu, \"bound_refusals\": %llu, "
+                "\"table_builds\": %llu},\n",
+                (unsigned long long)ls.leaps, (unsigned long long)ls.leap_steps,
+                (unsigned long long)ls.steps, (unsigned long long)ls.bound_fails,
+                (unsigned long long)ls.rebuilds);
+    }
     fprintf(f_out, "  \"modulator\": \"%s\",\n  \"dead_time_s\": %.9g,\n",
             modulator_names[e->cfg.modulator], 1e-9 * (double)e->cfg.params->pwm->dead_time_ns);
     fprintf(f_out, "  \"params\": \"");
@@ -495,6 +506,10 @@ static int run(const cli_options *o) {
         print_init_error(o, &scn, st);
         return 2;
     }
+    if (o->fast_path == CLI_FAST_LEAP && !leap_attach(&e)) {
+        fprintf(stderr, "uuvsim: option --fast-path leap: no memory for the leap tables\n");
+        return 2;
+    }
     bool full = (o->exec.plant == EXEC_PLANT_FULL);
     const out_spec outs[3] = {{"--csv", o->csv_path},
                               {"--trace", o->trace_path},
@@ -661,6 +676,12 @@ int main(int argc, char **argv) {
         return params_command(o.params_path, o.sets, o.n_sets, o.emit_c_path);
     case CLI_RUN:
         break;
+    }
+    if (o.fast_path == CLI_FAST_LEAP && !leap_available()) {
+        fprintf(stderr, "uuvsim: option --fast-path leap: not in the %s build (leaps map the "
+                "float build's step only); use the float build's uuvsim, or --fast-path "
+                "exact\n", UUV_NUMERIC_NAME);
+        return 2;
     }
     return run(&o);
 }

@@ -1,0 +1,535 @@
+/*
+ * Exact leaps between switching events on the desk (leap.h).
+ */
+#include "leap.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "drive_segment.h"
+
+#if UUV_NUMERIC == UUV_NUMERIC_FLOAT
+
+/* z: the leap's state and inputs (leap.h); the clamped components first. */
+enum {
+    Z_IL_A = 0, Z_VC_A, Z_ID_A, Z_IL_B, Z_VC_B, Z_ID_B, Z_VDC,
+    Z_JSH_A, Z_JSH_B, Z_IF_A, Z_IF_B,
+    Z_E_A, Z_E_B, Z_EV,
+    NZ
+};
+#define NX 11 /* the state part of z; the rest are inputs held over a leap */
+#define NCLAMP 7 /* z[0..6] are clamped (leap.h) */
+
+/* A filter phase's components in z. */
+static const int z_il[2] = {Z_IL_A, Z_IL_B};
+static const int z_vc[2] = {Z_VC_A, Z_VC_B};
+static const int z_id[2] = {Z_ID_A, Z_ID_B};
+static const int z_jsh[2] = {Z_JSH_A, Z_JSH_B};
+
+/* The rows a leap computes: the 11 states, the frame sums of v_C a, v_C b, v_dc; padded. */
+#define NR 16
+#define R_SUM 11
+/* The rows the bound covers: z[0..7] (row 7, j_sh a, is not clamped: no limit). */
+#define NB 8
+/* The last step's outputs (inverter voltages a, b, DC-link current), for the run's end. */
+#define NO 4
+
+#define NS 8 /* switch states, bit x = leg x high */
+
+/*
+ * The leap's product y = T z and the bound's sum B |z|: in AVX2 with FMA
+ * where the build's flags allow them (LEAP_ARCH in the Makefile), else in
+ * plain loops that the compiler vectorises for its baseline (SSE2, NEON)
+ * or not at all. Either is a fixed order of operations.
+ */
+#if defined(__AVX2__) && defined(__FMA__)
+#include <immintrin.h>
+#define LEAP_AVX2 1
+#else
+#define LEAP_AVX2 0
+#endif
+
+typedef struct {
+    double t[NZ][NR] __attribute__((aligned(64))); /* column-major: rows 0..10 of P_k, C_k */
+    double b[NZ][NB] __attribute__((aligned(64))); /* (k^2 / 8) max_m |Q_m|, clamped rows */
+    double o[NZ][NO] __attribute__((aligned(64))); /* the last step's outputs from z */
+} leap_entry;
+
+struct leap_tables {
+    leap_entry e[NS][LEAP_K_MAX + 1u];
+    double m[NS][NZ][NZ];     /* one step, column-major (m[c][r] = d out_r / d z_c) */
+    double mo[NS][NZ][3];     /* one step's outputs */
+    double qmax[NS][NZ][NB];  /* running max of |Q_m| */
+    uint32_t built[NS];       /* entries 0..built[s] are valid (0: only the identity) */
+    bool have_m[NS];
+    float key[10];            /* the coefficients the tables were built from */
+    bool keyed;
+    leap_stats st;
+};
+
+bool leap_available(void) { return true; }
+
+/* The coefficients the map depends on, in the order of key[]. */
+static void key_of(const drive_segment *d, float key[10]) {
+    const ps_coef_f32 *k = &d->ps.k;
+    key[0] = k->neg_eps_l;
+    key[1] = k->g_l2;
+    key[2] = k->neg_g_l;
+    key[3] = k->g_d;
+    key[4] = k->a_d;
+    key[5] = k->neg_a_d;
+    key[6] = k->k_node;
+    key[7] = k->neg_k_c;
+    key[8] = d->in.battery.kg;
+    key[9] = d->k_l;
+}
+
+/*
+ * One ordinary step of the real-time path in double, on z (linear in z:
+ * the inputs are entries of z), in the exact path's operations
+ * (fast_tick_plain(), power_stage_nodes.h) without its roundings. out: the
+ * new z (inputs copied), outs: u_a, u_b, i_dc of the step.
+ */
+static void step_d(const float key[10], unsigned s, const double z[NZ], double out[NZ],
+                   double outs[3]) {
+    const double neg_eps_l = (double)key[0];
+    const double g_l2 = (double)key[1];
+    const double neg_g_l = (double)key[2];
+    const double g_d = (double)key[3];
+    const double a_d = (double)key[4];
+    const double neg_a_d = (double)key[5];
+    const double k_node = (double)key[6];
+    const double neg_k_c = (double)key[7];
+    const double kg = (double)key[8];
+    const double k_l = (double)key[9];
+    const double sa = (double)(s & 1u);
+    const double sb = (double)((s >> 1) & 1u);
+    const double sc = (double)((s >> 2) & 1u);
+    const double w[2] = {2.0 * sa - sb - sc, 2.0 * sb - sa - sc};
+    const double dd[2] = {sa - sc, sb - sc};
+    const double v3 = z[Z_VDC] * (double)(1.0f / 3.0f);
+    double t = 0.0;
+    for (int x = 0; x < 2; x++) {
+        const double u = v3 * w[x];
+        const double i0 = z[z_il[x]];
+        const double vc = z[z_vc[x]];
+        const double id = z[z_id[x]];
+        const double jsh = z[z_jsh[x]];
+        const double im = z[Z_IF_A + x];
+        const double jl = (i0 + neg_eps_l * i0) + g_l2 * (u - vc);
+        const double dv = k_node * ((jl + jsh) - im);
+        const double il = jl + neg_g_l * dv;
+        const double idn = (id + neg_a_d * id) + g_d * dv;
+        const double vcn = vc + dv;
+        out[z_il[x]] = il;
+        out[z_vc[x]] = vcn;
+        out[z_id[x]] = idn;
+        out[z_jsh[x]] = ((il - im) - 2.0 * idn) + a_d * idn;
+        out[Z_IF_A + x] = im + (vcn - z[Z_E_A + x]) * k_l;
+        t += dd[x] * (i0 + il);
+        outs[x] = u;
+    }
+    const double i_dc = 0.5 * t;
+    out[Z_VDC] = z[Z_VDC] + (kg * (z[Z_EV] - z[Z_VDC]) + neg_k_c * i_dc);
+    out[Z_E_A] = z[Z_E_A];
+    out[Z_E_B] = z[Z_E_B];
+    out[Z_EV] = z[Z_EV];
+    outs[2] = i_dc;
+}
+
+/* The one-step map of state s, from the step on the unit vectors. */
+static void build_step(leap_tables *L, unsigned s) {
+    for (int c = 0; c < NZ; c++) {
+        double z[NZ] = {0.0};
+        z[c] = 1.0;
+        step_d(L->key, s, z, L->m[s][c], L->mo[s][c]);
+    }
+    L->have_m[s] = true;
+}
+
+/* P_k[c][r] of entry k (rows 0..10 stored, the input rows the identity). */
+static double p_at(const leap_entry *e, int c, int r) {
+    if (r < NX) {
+        return e->t[c][r];
+    }
+    return (r == c) ? 1.0 : 0.0;
+}
+
+/* Entry 0: the identity, no sums, no bound. */
+static void entry_zero(leap_entry *e) {
+    memset(e, 0, sizeof *e);
+    for (int c = 0; c < NX; c++) {
+        e->t[c][c] = 1.0;
+    }
+}
+
+/* Builds entries built[s] + 1 .. k of state s. */
+static void build_to(leap_tables *L, unsigned s, uint32_t k) {
+    if (!L->have_m[s]) {
+        build_step(L, s);
+    }
+    leap_entry *es = L->e[s];
+    if (L->built[s] == 0u) {
+        entry_zero(&es[0]);
+        memset(L->qmax[s], 0, sizeof L->qmax[s]);
+    }
+    for (uint32_t n = L->built[s] + 1u; n <= k; n++) {
+        const leap_entry *prev = &es[n - 1u];
+        leap_entry *cur = &es[n];
+        memset(cur, 0, sizeof *cur);
+        for (int c = 0; c < NZ; c++) {
+            /* P_n[:, c] = M P_{n-1}[:, c]; the outputs of the last step O P_{n-1}[:, c]. */
+            double col[NZ] = {0.0};
+            double oc[3] = {0.0};
+            for (int q = 0; q < NZ; q++) {
+                const double pq = p_at(prev, c, q);
+                if (pq == 0.0) {
+                    continue;
+                }
+                for (int r = 0; r < NX; r++) {
+                    col[r] += L->m[s][q][r] * pq;
+                }
+                for (int r = 0; r < 3; r++) {
+                    oc[r] += L->mo[s][q][r] * pq;
+                }
+            }
+            for (int r = 0; r < NX; r++) {
+                cur->t[c][r] = col[r];
+            }
+            cur->t[c][R_SUM + 0] = prev->t[c][R_SUM + 0] + col[Z_VC_A];
+            cur->t[c][R_SUM + 1] = prev->t[c][R_SUM + 1] + col[Z_VC_B];
+            cur->t[c][R_SUM + 2] = prev->t[c][R_SUM + 2] + col[Z_VDC];
+            for (int r = 0; r < 3; r++) {
+                cur->o[c][r] = oc[r];
+            }
+            /* The second difference Q_{n-2} = P_n - 2 P_{n-1} + P_{n-2} on the clamped rows. */
+            if (n >= 2u) {
+                const leap_entry *pp = &es[n - 2u];
+                for (int i = 0; i < NCLAMP; i++) {
+                    const int r = i;
+                    const double q2 = fabs(col[r] - 2.0 * p_at(prev, c, r) + p_at(pp, c, r));
+                    if (q2 > L->qmax[s][c][i]) {
+                        L->qmax[s][c][i] = q2;
+                    }
+                }
+            }
+            const double kk = (double)n * (double)n / 8.0;
+            for (int i = 0; i < NCLAMP; i++) {
+                cur->b[c][i] = kk * L->qmax[s][c][i];
+            }
+        }
+        L->st.entries++;
+    }
+    L->built[s] = k;
+}
+
+/* The tables follow the coefficients: built again from scratch when any changed. */
+static void tables_check(leap_tables *L, const drive_segment *d) {
+    float key[10];
+    key_of(d, key);
+    if (L->keyed && memcmp(key, L->key, sizeof key) == 0) {
+        return;
+    }
+    memcpy(L->key, key, sizeof key);
+    L->keyed = true;
+    for (unsigned s = 0u; s < NS; s++) {
+        L->built[s] = 0u;
+        L->have_m[s] = false;
+    }
+    L->st.rebuilds++;
+}
+
+/* ---- The switching events ------------------------------------------------ */
+
+/*
+ * The leg signs (bit x: e_x > 0, e_x = r_x - c the leg's comparison) at
+ * grid points 0..n from now, as the exact path forms them (pwm_rt_ends()):
+ * a step j has an edge when sig[j] != sig[j + 1]. Integer only; the loop
+ * vectorises.
+ */
+static void scan_signs(const pwm_rt *p, uint32_t n, uint8_t *restrict sig) {
+    const uint32_t ph0 = p->ph_c;
+    const uint32_t inc = p->inc_c;
+    const uint32_t r0a = (uint32_t)p->r[0];
+    const uint32_t r0b = (uint32_t)p->r[1];
+    const uint32_t dra = (uint32_t)p->dr[0];
+    const uint32_t drb = (uint32_t)p->dr[1];
+    for (uint32_t j = 0u; j <= n; j++) {
+        const uint32_t ph = ph0 + j * inc;
+        const uint32_t x = ph >> 7;
+        const uint32_t y = ((ph & 0x80000000u) != 0u) ? (0x2000000u - x) : x;
+        const int32_t c = (int32_t)y - PWM_RT_ONE;
+        const int32_t ra = (int32_t)(r0a + j * dra);
+        const int32_t rb = (int32_t)(r0b + j * drb);
+        sig[j] = (uint8_t)((unsigned)(ra - c > 0) | ((unsigned)(rb - c > 0) << 1) |
+                           ((unsigned)(-ra - rb - c > 0) << 2));
+    }
+}
+
+/*
+ * The first i >= j with sig[i] != sig[i + 1] (sig holds a sentinel that
+ * differs at the end), eight points at a time where bytes load as
+ * little-endian words.
+ */
+static uint32_t next_edge(const uint8_t *sig, uint32_t j) {
+#if defined(__BYTE_ORDER__) && (__BYTE_ORDER__ == __ORDER_LITTLE_ENDIAN__)
+    for (;;) {
+        uint64_t a;
+        uint64_t b;
+        memcpy(&a, sig + j, 8u);
+        memcpy(&b, sig + j + 1u, 8u);
+        const uint64_t dif = a ^ b;
+        if (dif != 0u) {
+            return j + (uint32_t)__builtin_ctzll(dif) / 8u;
+        }
+        j += 8u;
+    }
+#else
+    while (sig[j] == sig[j + 1u]) {
+        j++;
+    }
+    return j;
+#endif
+}
+
+/* ---- The leap ---------------------------------------------------------------- */
+
+/* The clamp limits less 0.1 % (leap.h), for z[0..7]; j_sh a has none. */
+static const double bound_lim[NB] __attribute__((aligned(64))) = {
+    256.0 * 0.999, 1024.0 * 0.999, 256.0 * 0.999, 256.0 * 0.999,
+    1024.0 * 0.999, 256.0 * 0.999, 1024.0 * 0.999, HUGE_VAL,
+};
+
+/* y = T z (16 rows) and bnd = B |z| (8 rows) of entry en. */
+static void product(const leap_entry *en, const double *z, double *y, double *bnd) {
+#if LEAP_AVX2
+    __m256d a0 = _mm256_setzero_pd();
+    __m256d a1 = _mm256_setzero_pd();
+    __m256d a2 = _mm256_setzero_pd();
+    __m256d a3 = _mm256_setzero_pd();
+    __m256d b0 = _mm256_setzero_pd();
+    __m256d b1 = _mm256_setzero_pd();
+    const __m256d mag = _mm256_castsi256_pd(_mm256_set1_epi64x(0x7FFFFFFFFFFFFFFF));
+    for (int c = 0; c < NZ; c++) {
+        const __m256d zc = _mm256_broadcast_sd(&z[c]);
+        const __m256d ac = _mm256_and_pd(zc, mag);
+        const double *t = en->t[c];
+        const double *b = en->b[c];
+        a0 = _mm256_fmadd_pd(_mm256_load_pd(t), zc, a0);
+        a1 = _mm256_fmadd_pd(_mm256_load_pd(t + 4), zc, a1);
+        a2 = _mm256_fmadd_pd(_mm256_load_pd(t + 8), zc, a2);
+        a3 = _mm256_fmadd_pd(_mm256_load_pd(t + 12), zc, a3);
+        b0 = _mm256_fmadd_pd(_mm256_load_pd(b), ac, b0);
+        b1 = _mm256_fmadd_pd(_mm256_load_pd(b + 4), ac, b1);
+    }
+    _mm256_store_pd(y, a0);
+    _mm256_store_pd(y + 4, a1);
+    _mm256_store_pd(y + 8, a2);
+    _mm256_store_pd(y + 12, a3);
+    _mm256_store_pd(bnd, b0);
+    _mm256_store_pd(bnd + 4, b1);
+#else
+    for (int r = 0; r < NR; r++) {
+        y[r] = 0.0;
+    }
+    for (int r = 0; r < NB; r++) {
+        bnd[r] = 0.0;
+    }
+    for (int c = 0; c < NZ; c++) {
+        const double zc = z[c];
+        const double ac = fabs(zc);
+        for (int r = 0; r < NR; r++) {
+            y[r] += en->t[c][r] * zc;
+        }
+        for (int r = 0; r < NB; r++) {
+            bnd[r] += en->b[c][r] * ac;
+        }
+    }
+#endif
+}
+
+/*
+ * k steps of switch state s as one map, if the bound allows (leap.h):
+ * returns false, the drive unchanged, otherwise. last: the run ends here
+ * (the last step's inverter voltages and DC-link current are formed).
+ */
+static bool leap_take(leap_tables *L, drive_segment *d, unsigned s, uint32_t k, bool last)
+    __attribute__((noinline));
+static bool leap_take(leap_tables *L, drive_segment *d, unsigned s, uint32_t k, bool last) {
+    if (L->built[s] < k) {
+        build_to(L, s, k);
+    }
+    const leap_entry *en = &L->e[s][k];
+    power_stage_f32 *ps = &d->ps;
+    const float zf[NZ] = {
+        ps->ph[0].i_l, ps->ph[0].v_c, ps->ph[0].i_d, ps->ph[1].i_l,
+        ps->ph[1].v_c, ps->ph[1].i_d, ps->v_dc,      ps->ph[0].j_sh,
+        ps->ph[1].j_sh, d->i_fast[0], d->i_fast[1],  d->e[0],
+        d->e[1],       d->in.battery.e_v,
+    };
+    double z[NZ] __attribute__((aligned(64)));
+    for (int c = 0; c < NZ; c++) {
+        z[c] = (double)zf[c];
+    }
+    double y[NR] __attribute__((aligned(64)));
+    double bnd[NB] __attribute__((aligned(64)));
+    product(en, z, y, bnd);
+    /* The bound on rows 0..7: max(|z|, |y|) + the second-difference term. */
+    bool ok = true;
+    for (int i = 0; i < NB; i++) {
+        const double a0 = fabs(z[i]);
+        const double a1 = fabs(y[i]);
+        ok &= (((a0 > a1) ? a0 : a1) + bnd[i] <= bound_lim[i]); /* false for a NaN too */
+    }
+    if (!ok) {
+        L->st.bound_fails++;
+        return false;
+    }
+    for (int x = 0; x < 2; x++) {
+        ps_phase_f32 *ph = &ps->ph[x];
+        ph->i_l = (float)y[z_il[x]];
+        ph->v_c = (float)y[z_vc[x]];
+        ph->i_d = (float)y[z_id[x]];
+        ph->j_sh = (float)y[z_jsh[x]];
+        d->i_fast[x] = (float)y[Z_IF_A + x];
+        d->sums.v_cap[x] += (float)y[R_SUM + x];
+    }
+    ps->v_dc = (float)y[Z_VDC];
+    d->sums.v_dc += (float)y[R_SUM + 2];
+    if (last) {
+        double o[NO] = {0.0, 0.0, 0.0, 0.0};
+        for (int c = 0; c < NZ; c++) {
+            for (int r = 0; r < NO; r++) {
+                o[r] += en->o[c][r] * z[c];
+            }
+        }
+        ps->u[0] = (float)o[0];
+        ps->u[1] = (float)o[1];
+        ps->i_dc = (float)o[2];
+    }
+    pwm_rt *rt = &d->rt;
+    rt->ph_c += k * rt->inc_c;
+    rt->r[0] = (int32_t)((uint32_t)rt->r[0] + k * (uint32_t)rt->dr[0]);
+    rt->r[1] = (int32_t)((uint32_t)rt->r[1] + k * (uint32_t)rt->dr[1]);
+    for (unsigned x = 0u; x < 3u; x++) {
+        d->s[x] = (int32_t)((s >> x) & 1u);
+    }
+    L->st.leaps++;
+    L->st.leap_steps += k;
+    return true;
+}
+
+/* Whether the run may leap at all: the path leap.h describes. */
+static bool leap_path(const drive_segment *d) {
+    return d->plain && d->fast_now == NULL && d->cfg.inverter == DRIVE_INVERTER_SWITCHING &&
+           d->cfg.modulator == DRIVE_MODULATOR_SUBSTEP && d->cfg.dead_time_ns == 0u &&
+           d->cfg.down == COUPLE_ZOH && d->cfg.up == COUPLE_AVG && !d->cfg.energy_audit;
+}
+
+static void ordinary(leap_tables *L, drive_segment *d, uint32_t n) {
+    if (n == 1u) {
+        drive_fast_step(d); /* the same bits as a run of one, without its copies */
+    } else {
+        drive_fast_run(d, n);
+    }
+    L->st.steps += n;
+}
+
+/* A stretch of k steps with no edge in switch state s: leaps, or ordinary steps. */
+static void stretch(leap_tables *L, drive_segment *d, unsigned s, uint32_t k, bool ends_run) {
+    while (k >= LEAP_K_MIN) {
+        uint32_t m = (k < LEAP_K_MAX) ? k : LEAP_K_MAX;
+        while (m >= LEAP_K_MIN && !leap_take(L, d, s, m, ends_run && m == k)) {
+            m /= 2u; /* the bound refused: a shorter leap */
+        }
+        if (m < LEAP_K_MIN) {
+            break;
+        }
+        k -= m;
+    }
+    if (k > 0u) {
+        ordinary(L, d, k);
+    }
+}
+
+#define SCAN_MAX 64u /* steps scanned for edges at a time */
+
+static void leap_run(void *ctx, drive_segment *d, uint32_t n) {
+    leap_tables *L = ctx;
+    if (n < LEAP_K_MIN || !leap_path(d)) {
+        ordinary(L, d, n);
+        return;
+    }
+    tables_check(L, d);
+    /* Points 0..m, the sentinel m + 1 (not a sign: 8), room for the last word's load. */
+    uint8_t sig[SCAN_MAX + 10u];
+    uint32_t done = 0u;
+    while (done < n) {
+        const uint32_t m = (n - done < SCAN_MAX) ? n - done : SCAN_MAX;
+        scan_signs(&d->rt, m, sig);
+        memset(sig + m + 1u, 8, 8u);
+        uint32_t j = 0u;
+        while (j < m) {
+            const uint32_t i0 = next_edge(sig, j);
+            uint32_t i = (i0 < m) ? i0 : m;
+            /* Steps j..i-1 hold the legs' states; step i (if i < m) has an edge. */
+            if (i > j) {
+                stretch(L, d, (unsigned)sig[j], i - j, done + i == n);
+            }
+            if (i < m) {
+                ordinary(L, d, 1u);
+                i++;
+            }
+            j = i;
+        }
+        done += m;
+    }
+}
+
+bool leap_attach(exec *e) {
+    void *mem = NULL;
+    if (posix_memalign(&mem, 64u, sizeof(leap_tables)) != 0) {
+        return false;
+    }
+    leap_tables *L = mem;
+    memset(L, 0, sizeof *L);
+    e->desk_run = leap_run;
+    e->desk_ctx = L;
+    return true;
+}
+
+void leap_detach(exec *e) {
+    if (e->desk_run == leap_run) {
+        free(e->desk_ctx);
+        e->desk_run = NULL;
+        e->desk_ctx = NULL;
+    }
+}
+
+leap_stats leap_stats_of(const exec *e) {
+    leap_stats z = {0};
+    if (e->desk_run == leap_run) {
+        return ((const leap_tables *)e->desk_ctx)->st;
+    }
+    return z;
+}
+
+#else /* UUV_NUMERIC_FIXED: no leaps (leap.h) */
+
+bool leap_available(void) { return false; }
+
+bool leap_attach(exec *e) {
+    (void)e;
+    return false;
+}
+
+void leap_detach(exec *e) { (void)e; }
+
+leap_stats leap_stats_of(const exec *e) {
+    (void)e;
+    leap_stats z = {0};
+    return z;
+}
+
+#endif
