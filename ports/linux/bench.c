@@ -38,6 +38,7 @@
 #include <time.h>
 
 #include "executive.h"
+#include "leap.h"
 #include "fixedpoint/wavetable.h"
 #include "models/drive/pwm/pwm_rt.h"
 #include "uuv_config.h"
@@ -62,10 +63,16 @@ static double now_s(void) {
 
 static scenario scn;
 static exec ex;
+static bool run_leaps; /* run() takes the exact leaps (--fast-path leap, leap.h) */
+static leap_stats run_leap_stats;
 
 static int run(const exec_config *cfg, run_data *out) {
     if (exec_init(&ex, cfg, &scn) != EXEC_OK) {
         fprintf(stderr, "bench: the executive refused the configuration\n");
+        return -1;
+    }
+    if (run_leaps && !leap_attach(&ex)) {
+        fprintf(stderr, "bench: no leaps in this build, or no memory for their tables\n");
         return -1;
     }
     out->n = 0;
@@ -79,6 +86,8 @@ static int run(const exec_config *cfg, run_data *out) {
     }
     out->cpu_s = now_s() - t0;
     out->state = ex.state;
+    run_leap_stats = leap_stats_of(&ex);
+    leap_detach(&ex);
     return 0;
 }
 
@@ -199,6 +208,62 @@ static void segment_costs(const exec_config *base, double ns[5]) {
         (void)battery_companion_f64(&b);
     }
     ns[3] = 1e9 * (now_s() - t0) / n_slow;
+}
+
+/*
+ * The exact leaps on the default mission (float build): the real-time
+ * factor (best of three leap runs, interleaved with two exact ones) and the
+ * largest RMS deviation of a telemetry column from the exact run's,
+ * relative to that column's RMS. The fixed build has none (null).
+ */
+static int leap_mission(const exec_config *base) {
+    static run_data exact, leap;
+    if (!leap_available()) {
+        fprintf(stderr, "  exact leaps: not in the %s build\n", UUV_NUMERIC_NAME);
+        printf(", \"rtf_leap\": null, \"leap_dev_rel\": null");
+        return 0;
+    }
+    exec_config c = *base;
+    c.duration_s = 0.0;
+    double cpu_exact = 1e300;
+    double cpu_leap = 1e300;
+    for (int k = 0; k < 5; k++) {
+        run_leaps = (k % 2 == 0);
+        run_data *r = run_leaps ? &leap : &exact;
+        if (run(&c, r) != 0) {
+            run_leaps = false;
+            return -1;
+        }
+        double *best = run_leaps ? &cpu_leap : &cpu_exact;
+        *best = (r->cpu_s < *best) ? r->cpu_s : *best;
+    }
+    run_leaps = false;
+    const leap_stats st = run_leap_stats;
+    double dev = 0.0;
+    const char *worst = "none";
+    static const char *const extra[] = {"te_nm", "i_rms_a", "v_dc_v", "i_batt_a", "soc",
+                                        "m_index", "f_hz"};
+    for (size_t i = 0; i < VESSEL_NSTATES + EXEC_NCMD + 7u; i++) {
+        const size_t off = offsetof(exec_frame, x) + i * sizeof(double);
+        const double d = 0.01 * rel_rms(&leap, &exact, off);
+        if (d > dev) {
+            dev = d;
+            worst = (i < VESSEL_NSTATES)               ? vessel_state_names[i]
+                    : (i < VESSEL_NSTATES + EXEC_NCMD) ? exec_command_names[i - VESSEL_NSTATES]
+                                                       : extra[i - VESSEL_NSTATES - EXEC_NCMD];
+        }
+    }
+    const double sim = leap.rec[leap.n - 1].t_s;
+    fprintf(stderr, "  exact leaps on %s (%.0f s): real-time factor %.0f against %.0f exact "
+                    "(x%.2f, CPU time, best of 3 and 2); largest deviation %.2g of its RMS "
+                    "(%s; target <= 1e-5: %s); %.1f steps per leap, %.1f %% of the steps in "
+                    "leaps\n",
+            MISSION_PATH, sim, sim / cpu_leap, sim / cpu_exact, cpu_exact / cpu_leap, dev, worst,
+            met(dev <= 1e-5), (double)st.leap_steps / (double)(st.leaps > 0u ? st.leaps : 1u),
+            100.0 * (double)st.leap_steps / (sim / (1e-9 * (double)c.fast_ns)));
+    printf(", \"rtf_leap\": %.6g, \"rtf_exact_mission\": %.6g, \"leap_dev_rel\": %.6g",
+           sim / cpu_leap, sim / cpu_exact, dev);
+    return 0;
 }
 
 static const char *const down_names[] = {"zoh", "foh", "deriv", "stagger"};
@@ -652,6 +717,9 @@ int main(int argc, char **argv) {
             MISSION_PATH, avg.rec[avg.n - 1].t_s, rtf_mission, rtf_mission_target,
             met(rtf_mission >= rtf_mission_target));
     printf(", \"rtf_averaged_mission\": %.6g", rtf_mission);
+    if (leap_mission(&cfg) != 0) {
+        return 1;
+    }
     if (load(argv[1]) != 0) {
         return 1;
     }
