@@ -48,7 +48,7 @@ SUITES := $(patsubst tests/unit/test_%.c,%,$(sort $(wildcard tests/unit/test_*.c
 LINUX_PORT_C := $(sort $(wildcard ports/linux/hal_*.c))
 UUVSIM_C := ports/linux/uuvsim.c ports/linux/cli.c ports/linux/csv_out.c ports/linux/derivs.c \
             ports/linux/view.c ports/linux/live.c ports/linux/out_file.c ports/linux/paramset.c ports/linux/sweep.c \
-            ports/linux/party_host.c ports/linux/leap.c
+            ports/linux/party_host.c ports/linux/leap.c ports/linux/batch.c ports/linux/batch_lanes.c
 CORTEXM_PORT_C := ports/cortexm/startup.c ports/cortexm/hal_cortexm.c \
                   ports/cortexm/semihost.c ports/cortexm/libc_min.c
 

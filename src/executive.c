@@ -651,27 +651,36 @@ static bool desk_averaged(const exec *e) {
            !e->control_busy && !e->slow_pending && e->medium_phase == 0u && !e->report_ready;
 }
 
-uint32_t exec_desk_run(exec *e, uint32_t max_ticks) {
-    uint32_t n = 0u;
-    if (desk_averaged(e)) {
-        return desk_run_averaged(e, max_ticks);
+uint32_t exec_desk_ahead(const exec *e, uint32_t max_ticks) {
+    if (e->cfg.plant != EXEC_PLANT_FULL || e->fast_gate != 0u || desk_averaged(e)) {
+        return 0u;
     }
-    if (e->cfg.plant == EXEC_PLANT_FULL && e->fast_gate == 0u) {
-        /* The ticks before the next event only step (exec_fast_tick()). */
-        n = e->fast_event_at - e->fast_phase - 1u;
-        n = (n < max_ticks) ? n : max_ticks;
-        if (e->desk_run != NULL) {
-            e->desk_run(e->desk_ctx, &e->drive, n);
-        } else {
-            drive_fast_run(&e->drive, n);
-        }
-        e->fast_phase += n;
-    }
+    /* The ticks before the next event only step (exec_fast_tick()). */
+    const uint32_t n = e->fast_event_at - e->fast_phase - 1u;
+    return (n < max_ticks) ? n : max_ticks;
+}
+
+uint32_t exec_desk_finish(exec *e, uint32_t stepped, uint32_t max_ticks) {
+    uint32_t n = stepped;
+    e->fast_phase += n;
     if (n < max_ticks) {
         exec_desk_step(e);
         n++;
     }
     return n;
+}
+
+uint32_t exec_desk_run(exec *e, uint32_t max_ticks) {
+    if (desk_averaged(e)) {
+        return desk_run_averaged(e, max_ticks);
+    }
+    const uint32_t n = exec_desk_ahead(e, max_ticks);
+    if (n > 0u && e->desk_run != NULL) {
+        e->desk_run(e->desk_ctx, &e->drive, n);
+    } else if (n > 0u) {
+        drive_fast_run(&e->drive, n);
+    }
+    return exec_desk_finish(e, n, max_ticks);
 }
 
 bool exec_report_take(exec *e, exec_frame *out) {

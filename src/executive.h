@@ -310,6 +310,20 @@ void exec_desk_step(exec *e);
 uint32_t exec_desk_run(exec *e, uint32_t max_ticks);
 
 /*
+ * exec_desk_run() in its two halves, for a port that runs the steps of
+ * several runs together (the desk's batches, ports/linux/batch.c):
+ *   n = exec_desk_ahead(e, max_ticks);   the ticks that only step (0: none)
+ *   drive_fast_run(&e->drive, n);        or the same steps computed elsewhere
+ *   exec_desk_finish(e, n, max_ticks);   counts them; the event's tick
+ * is exec_desk_run(e, max_ticks) without a desk_run and outside the
+ * averaged layer's frames
+ * (which exec_desk_ahead() leaves to exec_desk_run(): it returns 0 there,
+ * as at any tick with work before its step).
+ */
+uint32_t exec_desk_ahead(const exec *e, uint32_t max_ticks);
+uint32_t exec_desk_finish(exec *e, uint32_t stepped, uint32_t max_ticks);
+
+/*
  * A command given between slow steps, as a scenario event at the slow
  * boundary just reached would have been: a co-simulation master's input
  * at a communication point (ports/fmu). Call it after the boundary's slow

@@ -126,6 +126,8 @@ for v in linux-fixed linux-float; do
     run "host $v property through uuvsim, 100" pass sh tests/host/test_property.sh \
         "$BUILD/$v/uuvsim" 100 1
     run "host $v output safety" pass sh tests/host/test_outputs.sh "$BUILD/$v/uuvsim"
+    run "host $v batch: every run's outputs its single run's" pass sh tests/host/test_batch.sh \
+        "$BUILD/$v/uuvsim"
 done
 for v in linux-fixed linux-float; do
     run "host $v parameter sets" pass sh tests/host/test_params.sh "$BUILD/$v/uuvsim"

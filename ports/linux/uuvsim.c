@@ -23,6 +23,7 @@
 #include "live.h"
 #include "math/umath.h"
 #include "paramset.h"
+#include "run.h"
 #include "party_host.h"
 #include "sweep.h"
 #include "uuv_config.h"
@@ -39,6 +40,8 @@ static double wall_seconds(void) {
     clock_gettime(CLOCK_MONOTONIC, &ts);
     return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
 }
+
+double uuvsim_wall_s(void) { return wall_seconds(); }
 
 /*
  * Opens an input file for reading: a regular file only (a FIFO without a
@@ -468,183 +471,261 @@ static void pace(run_result *r, double w0, double t_s, live_server *live) {
     }
 }
 
-static int run(const cli_options *o) {
-    static scenario scn;
-    if (!uuvsim_load_scenario(o->scenario_path, &scn)) {
-        return 2;
+/* One run's state from its options to its committed outputs (run.h). */
+struct uuvsim_run {
+    scenario scn;
+    param_store *set;
+    exec e;
+    out_file csv, trace, sum;
+    live_server *live;
+    run_result r;
+    bool full, progress, tracing;
+    bool leap; /* --fast-path leap: e's runs of steps are leap.c's */
+    uint64_t trace_first, trace_last;
+    uint64_t traced; /* the fast step of the last trace row */
+    double w0, next_progress;
+};
+
+static void run_free(uuvsim_run *u) {
+    if (u != NULL) {
+        if (u->leap) {
+            leap_detach(&u->e);
+        }
+        params_free(u->set);
+        free(u);
     }
-    if (o->exec.duration_s <= 0.0 && scn.duration_s <= 0.0) {
+}
+
+uuvsim_run *uuvsim_run_open(const cli_options *o, int *status) {
+    *status = 2;
+    uuvsim_run *u = calloc(1u, sizeof *u);
+    if (u == NULL) {
+        fprintf(stderr, "uuvsim: out of memory\n");
+        return NULL;
+    }
+    scenario *scn = &u->scn;
+    if (!uuvsim_load_scenario(o->scenario_path, scn)) {
+        run_free(u);
+        return NULL;
+    }
+    if (o->exec.duration_s <= 0.0 && scn->duration_s <= 0.0) {
         fprintf(stderr, "uuvsim: %s: no duration (give 'duration <s>' or --duration)\n",
                 o->scenario_path);
-        return 2;
+        run_free(u);
+        return NULL;
     }
-    const double duration = (o->exec.duration_s > 0.0) ? o->exec.duration_s : scn.duration_s;
+    const double duration = (o->exec.duration_s > 0.0) ? o->exec.duration_s : scn->duration_s;
     if (o->trace_path != NULL && o->trace_from_s >= duration) {
         fprintf(stderr, "uuvsim: option --trace-from: %g s is not before the end of the run "
                 "(%g s): the trace would be empty\n", o->trace_from_s, duration);
-        return 2;
+        run_free(u);
+        return NULL;
     }
     scenario_error err;
-    if (!exec_check_scenario(&o->exec, &scn, &err)) {
+    if (!exec_check_scenario(&o->exec, scn, &err)) {
         fprintf(stderr, "uuvsim: %s:%u: field '%s': %s\n", o->scenario_path, err.line, err.field,
                 err.message);
-        return 2;
+        run_free(u);
+        return NULL;
     }
-    static param_store *set;
-    set = params_new();
-    if (set == NULL || !params_load(set, o->params_path, o->sets, o->n_sets) ||
-        !params_check_run(set, o->exec.plant != EXEC_PLANT_FULL ||
-                                   (o->exec.inverter == DRIVE_INVERTER_SWITCHING &&
-                                    o->exec.modulator == DRIVE_MODULATOR_SUBSTEP))) {
-        return 2;
+    u->set = params_new();
+    if (u->set == NULL || !params_load(u->set, o->params_path, o->sets, o->n_sets) ||
+        !params_check_run(u->set, o->exec.plant != EXEC_PLANT_FULL ||
+                                      (o->exec.inverter == DRIVE_INVERTER_SWITCHING &&
+                                       o->exec.modulator == DRIVE_MODULATOR_SUBSTEP))) {
+        run_free(u);
+        return NULL;
     }
     exec_config cfg = o->exec;
-    cfg.params = params_set(set);
-    static exec e;
-    exec_status st = exec_init(&e, &cfg, &scn);
+    cfg.params = params_set(u->set);
+    exec *e = &u->e;
+    exec_status st = exec_init(e, &cfg, scn);
     if (st != EXEC_OK) {
-        print_init_error(o, &scn, st);
-        return 2;
+        print_init_error(o, scn, st);
+        run_free(u);
+        return NULL;
     }
-    if (o->fast_path == CLI_FAST_LEAP && !leap_attach(&e)) {
-        fprintf(stderr, "uuvsim: option --fast-path leap: no memory for the leap tables\n");
-        return 2;
+    if (o->fast_path == CLI_FAST_LEAP) {
+        if (!leap_attach(e)) {
+            fprintf(stderr, "uuvsim: option --fast-path leap: no memory for the leap tables\n");
+            run_free(u);
+            return NULL;
+        }
+        u->leap = true;
     }
-    bool full = (o->exec.plant == EXEC_PLANT_FULL);
+    u->full = (o->exec.plant == EXEC_PLANT_FULL);
     const out_spec outs[3] = {{"--csv", o->csv_path},
                               {"--trace", o->trace_path},
                               {"--summary", o->summary_path}};
     const out_spec ins[1] = {{"--scenario", o->scenario_path}};
     if (!out_check(outs, 3, ins, 1)) {
-        return 2;
+        run_free(u);
+        return NULL;
     }
     out_guard_signals();
     /* Every output is written in full before any is committed (out_file.h). */
-    static out_file csv, trace, sum;
-    if ((o->csv_path != NULL && !out_open(&csv, o->csv_path)) ||
-        (o->trace_path != NULL && !out_open(&trace, o->trace_path)) ||
-        (o->summary_path != NULL && !out_open(&sum, o->summary_path))) {
-        out_abort(&csv);
-        out_abort(&trace);
-        return 2;
+    if ((o->csv_path != NULL && !out_open(&u->csv, o->csv_path)) ||
+        (o->trace_path != NULL && !out_open(&u->trace, o->trace_path)) ||
+        (o->summary_path != NULL && !out_open(&u->sum, o->summary_path))) {
+        out_abort(&u->csv);
+        out_abort(&u->trace);
+        run_free(u);
+        return NULL;
     }
-    live_server *live = NULL;
-    if (o->view && (live = live_open((unsigned)o->view_port, full)) == NULL) {
-        out_abort(&csv);
-        out_abort(&trace);
-        out_abort(&sum);
-        return 2;
+    if (o->view && (u->live = live_open((unsigned)o->view_port, u->full)) == NULL) {
+        uuvsim_run_abort(u);
+        return NULL;
     }
-    if (csv.f != NULL) {
-        csv_header(csv.f, full);
+    if (u->csv.f != NULL) {
+        csv_header(u->csv.f, u->full);
     }
-    uint64_t trace_first = 0u;
-    uint64_t trace_last = 0u;
-    if (trace.f != NULL) {
-        trace_header(trace.f);
-        double fast_s = 1e-9 * (double)e.cfg.fast_ns;
-        trace_first = (uint64_t)(o->trace_from_s / fast_s + 0.5);
-        trace_last = (uint64_t)(o->trace_to_s / fast_s + 0.5);
+    if (u->trace.f != NULL) {
+        trace_header(u->trace.f);
+        double fast_s = 1e-9 * (double)e->cfg.fast_ns;
+        u->trace_first = (uint64_t)(o->trace_from_s / fast_s + 0.5);
+        u->trace_last = (uint64_t)(o->trace_to_s / fast_s + 0.5);
     }
-    bool progress = !o->quiet && isatty(STDERR_FILENO);
-    run_result r = {o, params_label(set), &e, {0}, 0.0, 0.0, 0u, &scn};
-    (void)exec_report_take(&e, &r.last);
-    if (csv.f != NULL) {
-        csv_row(csv.f, &r.last, full);
+    u->progress = !o->quiet && isatty(STDERR_FILENO);
+    u->r = (run_result){o, params_label(u->set), e, {0}, 0.0, 0.0, 0u, scn};
+    (void)exec_report_take(e, &u->r.last);
+    if (u->csv.f != NULL) {
+        csv_row(u->csv.f, &u->r.last, u->full);
     }
-    if (live != NULL) {
-        live_frame(live, &r.last);
-        live_wait_browser(live); /* the run starts when someone watches */
+    if (u->live != NULL) {
+        live_frame(u->live, &u->r.last);
+        live_wait_browser(u->live); /* the run starts when someone watches */
     }
-    double w0 = wall_seconds();
-    double next_progress = w0 + 0.5;
-    uint64_t traced = UINT64_MAX; /* the fast step of the last trace row */
-    bool tracing = (trace.f != NULL && full);
-    while (e.state == EXEC_RUNNING) {
-        /* Steps in runs, but one at a time inside the trace window. */
-        uint32_t max_ticks = UINT32_MAX;
-        if (tracing) {
-            uint64_t k = exec_fast_steps(&e);
-            if (k < trace_first) {
-                uint64_t ahead = trace_first - k;
-                max_ticks = (ahead < UINT32_MAX) ? (uint32_t)ahead : UINT32_MAX;
-            } else if (k < trace_last) {
-                max_ticks = 1u;
-            }
-        }
-        (void)exec_desk_run(&e, max_ticks);
-        if (tracing) {
-            uint64_t k = exec_fast_steps(&e);
-            if (k != traced && k >= trace_first && k <= trace_last) {
-                traced = k; /* a tick without a step (the run's last) adds no row */
-                drive_trace_row row;
-                drive_trace(&e.drive, &row);
-                trace_row(trace.f, exec_time_s(&e), &row);
-            }
-        }
-        if (!e.report_ready) {
-            continue;
-        }
-        (void)exec_report_take(&e, &r.last);
-        if (csv.f != NULL) {
-            csv_row(csv.f, &r.last, full);
-        }
-        if (live != NULL) {
-            live_frame(live, &r.last);
-        }
-        if (o->realtime) {
-            pace(&r, w0, r.last.t_s, live);
-        }
-        if (progress && wall_seconds() >= next_progress) {
-            next_progress += 0.5;
-            fprintf(stderr, "\r  t = %8.1f s  u = %5.2f m/s  depth %7.2f m  shaft %5.0f rpm ",
-                    r.last.t_s, r.last.x[VESSEL_U_MPS], r.last.x[VESSEL_Z_M],
-                    r.last.x[VESSEL_N_RPM]);
+    u->w0 = wall_seconds();
+    u->next_progress = u->w0 + 0.5;
+    u->traced = UINT64_MAX;
+    u->tracing = (u->trace.f != NULL && u->full);
+    *status = 0;
+    return u;
+}
+
+exec *uuvsim_run_exec(uuvsim_run *u) { return &u->e; }
+
+uint32_t uuvsim_run_ahead(const uuvsim_run *u) {
+    /* Steps in runs, but one at a time inside the trace window. */
+    uint32_t max_ticks = UINT32_MAX;
+    if (u->tracing) {
+        uint64_t k = exec_fast_steps(&u->e);
+        if (k < u->trace_first) {
+            uint64_t ahead = u->trace_first - k;
+            max_ticks = (ahead < UINT32_MAX) ? (uint32_t)ahead : UINT32_MAX;
+        } else if (k < u->trace_last) {
+            max_ticks = 1u;
         }
     }
-    r.wall_s = wall_seconds() - w0;
-    if (progress) {
+    return max_ticks;
+}
+
+void uuvsim_run_after(uuvsim_run *u) {
+    exec *e = &u->e;
+    run_result *r = &u->r;
+    const cli_options *o = r->o;
+    if (u->tracing) {
+        uint64_t k = exec_fast_steps(e);
+        if (k != u->traced && k >= u->trace_first && k <= u->trace_last) {
+            u->traced = k; /* a tick without a step (the run's last) adds no row */
+            drive_trace_row row;
+            drive_trace(&e->drive, &row);
+            trace_row(u->trace.f, exec_time_s(e), &row);
+        }
+    }
+    if (!e->report_ready) {
+        return;
+    }
+    (void)exec_report_take(e, &r->last);
+    if (u->csv.f != NULL) {
+        csv_row(u->csv.f, &r->last, u->full);
+    }
+    if (u->live != NULL) {
+        live_frame(u->live, &r->last);
+    }
+    if (o->realtime) {
+        pace(r, u->w0, r->last.t_s, u->live);
+    }
+    if (u->progress && wall_seconds() >= u->next_progress) {
+        u->next_progress += 0.5;
+        fprintf(stderr, "\r  t = %8.1f s  u = %5.2f m/s  depth %7.2f m  shaft %5.0f rpm ",
+                r->last.t_s, r->last.x[VESSEL_U_MPS], r->last.x[VESSEL_Z_M],
+                r->last.x[VESSEL_N_RPM]);
+    }
+}
+
+void uuvsim_run_abort(uuvsim_run *u) {
+    out_abort(&u->csv);
+    out_abort(&u->trace);
+    out_abort(&u->sum);
+    if (u->live != NULL) {
+        live_close(u->live);
+    }
+    run_free(u);
+}
+
+int uuvsim_run_close(uuvsim_run *u, double wall_s) {
+    run_result *r = &u->r;
+    const cli_options *o = r->o;
+    exec *e = &u->e;
+    r->wall_s = (wall_s >= 0.0) ? wall_s : wall_seconds() - u->w0;
+    if (u->progress) {
         fprintf(stderr, "\r%78s\r", "");
     }
-    if (live != NULL) {
+    if (u->live != NULL) {
         /* The summary to the live view's browsers, then the end of their streams. */
         char *text = NULL;
         size_t len = 0u;
         FILE *m = open_memstream(&text, &len);
         if (m != NULL) {
-            print_json(m, &r);
+            print_json(m, r);
             fclose(m);
         }
-        live_end(live, text != NULL ? text : "null", text != NULL ? len : 4u);
+        live_end(u->live, text != NULL ? text : "null", text != NULL ? len : 4u);
         free(text);
-        live_close(live);
+        live_close(u->live);
+        u->live = NULL;
     }
-    if (sum.f != NULL) {
-        print_json(sum.f, &r);
+    if (u->sum.f != NULL) {
+        print_json(u->sum.f, r);
     }
     if (o->json) {
-        print_json(stdout, &r);
+        print_json(stdout, r);
     } else if (!o->quiet) {
-        print_text(&r);
+        print_text(r);
     }
-    bool ok = out_finish(&csv);
-    ok = out_finish(&trace) && ok;
-    ok = out_finish(&sum) && ok;
+    bool ok = out_finish(&u->csv);
+    ok = out_finish(&u->trace) && ok;
+    ok = out_finish(&u->sum) && ok;
     ok = ok && out_stdout_ok();
-    ok = ok && out_commit(&csv);
-    ok = ok && out_commit(&trace);
-    ok = ok && out_commit(&sum);
+    ok = ok && out_commit(&u->csv);
+    ok = ok && out_commit(&u->trace);
+    ok = ok && out_commit(&u->sum);
     if (!ok) {
-        out_abort(&csv);
-        out_abort(&trace);
-        out_abort(&sum);
+        uuvsim_run_abort(u);
         return 2;
     }
-    if (e.state == EXEC_STOP_NONFINITE) {
-        print_nonfinite(&e);
-        return 3;
+    int status = e->state == EXEC_DONE ? 0 : 1;
+    if (e->state == EXEC_STOP_NONFINITE) {
+        print_nonfinite(e);
+        status = 3;
     }
-    return e.state == EXEC_DONE ? 0 : 1;
+    run_free(u);
+    return status;
+}
+
+static int run(const cli_options *o) {
+    int status;
+    uuvsim_run *u = uuvsim_run_open(o, &status);
+    if (u == NULL) {
+        return status;
+    }
+    exec *e = uuvsim_run_exec(u);
+    while (e->state == EXEC_RUNNING) {
+        (void)exec_desk_run(e, uuvsim_run_ahead(u));
+        uuvsim_run_after(u);
+    }
+    return uuvsim_run_close(u, -1.0);
 }
 
 int main(int argc, char **argv) {
@@ -655,6 +736,9 @@ int main(int argc, char **argv) {
     }
     if (argc >= 2 && strcmp(argv[1], "party") == 0) {
         return party_main(argc, argv);
+    }
+    if (argc >= 2 && strcmp(argv[1], "batch") == 0) {
+        return batch_main(argc, argv);
     }
     if (!cli_parse(argc, argv, &o, err, sizeof err)) {
         fprintf(stderr, "uuvsim: %s\n", err);
