@@ -50,11 +50,18 @@ static const int z_jsh[2] = {Z_JSH_A, Z_JSH_B};
 #define LEAP_AVX2 0
 #endif
 
+/*
+ * One table entry, in blocks of eight rows, each column-major (block 0:
+ * rows 0..7 of T, block 1: rows 8..15, block 2: the bound's B): a leap
+ * reads each block as 14 contiguous groups of eight.
+ */
 typedef struct {
-    double t[NZ][NR] __attribute__((aligned(64))); /* column-major: rows 0..10 of P_k, C_k */
-    double b[NZ][NB] __attribute__((aligned(64))); /* (k^2 / 8) max_m |Q_m|, clamped rows */
+    double m[3][NZ][8] __attribute__((aligned(64)));
     double o[NZ][NO] __attribute__((aligned(64))); /* the last step's outputs from z */
 } leap_entry;
+
+#define T_AT(e, c, r) ((e)->m[(r) >> 3][c][(r) & 7])
+#define B_AT(e, c, i) ((e)->m[2][c][i])
 
 struct leap_tables {
     leap_entry e[NS][LEAP_K_MAX + 1u];
@@ -151,7 +158,7 @@ static void build_step(leap_tables *L, unsigned s) {
 /* P_k[c][r] of entry k (rows 0..10 stored, the input rows the identity). */
 static double p_at(const leap_entry *e, int c, int r) {
     if (r < NX) {
-        return e->t[c][r];
+        return T_AT(e, c, r);
     }
     return (r == c) ? 1.0 : 0.0;
 }
@@ -160,11 +167,12 @@ static double p_at(const leap_entry *e, int c, int r) {
 static void entry_zero(leap_entry *e) {
     memset(e, 0, sizeof *e);
     for (int c = 0; c < NX; c++) {
-        e->t[c][c] = 1.0;
+        T_AT(e, c, c) = 1.0;
     }
 }
 
-/* Builds entries built[s] + 1 .. k of state s. */
+/* Builds entries built[s] + 1 .. k of state s (out of the leap's line: rare). */
+static void build_to(leap_tables *L, unsigned s, uint32_t k) __attribute__((noinline, cold));
 static void build_to(leap_tables *L, unsigned s, uint32_t k) {
     if (!L->have_m[s]) {
         build_step(L, s);
@@ -195,11 +203,11 @@ static void build_to(leap_tables *L, unsigned s, uint32_t k) {
                 }
             }
             for (int r = 0; r < NX; r++) {
-                cur->t[c][r] = col[r];
+                T_AT(cur, c, r) = col[r];
             }
-            cur->t[c][R_SUM + 0] = prev->t[c][R_SUM + 0] + col[Z_VC_A];
-            cur->t[c][R_SUM + 1] = prev->t[c][R_SUM + 1] + col[Z_VC_B];
-            cur->t[c][R_SUM + 2] = prev->t[c][R_SUM + 2] + col[Z_VDC];
+            T_AT(cur, c, R_SUM + 0) = T_AT(prev, c, R_SUM + 0) + col[Z_VC_A];
+            T_AT(cur, c, R_SUM + 1) = T_AT(prev, c, R_SUM + 1) + col[Z_VC_B];
+            T_AT(cur, c, R_SUM + 2) = T_AT(prev, c, R_SUM + 2) + col[Z_VDC];
             for (int r = 0; r < 3; r++) {
                 cur->o[c][r] = oc[r];
             }
@@ -216,7 +224,7 @@ static void build_to(leap_tables *L, unsigned s, uint32_t k) {
             }
             const double kk = (double)n * (double)n / 8.0;
             for (int i = 0; i < NCLAMP; i++) {
-                cur->b[c][i] = kk * L->qmax[s][c][i];
+                B_AT(cur, c, i) = kk * L->qmax[s][c][i];
             }
         }
         L->st.entries++;
@@ -301,34 +309,45 @@ static const double bound_lim[NB] __attribute__((aligned(64))) = {
     1024.0 * 0.999, 256.0 * 0.999, 1024.0 * 0.999, HUGE_VAL,
 };
 
+#if LEAP_AVX2
+/*
+ * out = M z for a block of eight rows (magnitude: M |z|), as two sums (even
+ * and odd columns) of each half, so that the chains of products are half as
+ * long: the leap's latency, which the next step waits for.
+ */
+static inline void block8(const double (*m)[8], const double *z, bool magnitude, double *out) {
+    const __m256d mag =
+        _mm256_castsi256_pd(_mm256_set1_epi64x(magnitude ? 0x7FFFFFFFFFFFFFFF : (int64_t)-1));
+    __m256d lo0 = _mm256_setzero_pd();
+    __m256d lo1 = _mm256_setzero_pd();
+    __m256d hi0 = _mm256_setzero_pd();
+    __m256d hi1 = _mm256_setzero_pd();
+#pragma GCC unroll 16
+    for (int c = 0; c < NZ; c += 2) {
+        const __m256d z0 = _mm256_and_pd(_mm256_broadcast_sd(&z[c]), mag);
+        const __m256d z1 = _mm256_and_pd(_mm256_broadcast_sd(&z[c + 1]), mag);
+        lo0 = _mm256_fmadd_pd(_mm256_load_pd(m[c]), z0, lo0);
+        hi0 = _mm256_fmadd_pd(_mm256_load_pd(m[c] + 4), z0, hi0);
+        lo1 = _mm256_fmadd_pd(_mm256_load_pd(m[c + 1]), z1, lo1);
+        hi1 = _mm256_fmadd_pd(_mm256_load_pd(m[c + 1] + 4), z1, hi1);
+    }
+    _mm256_store_pd(out, _mm256_add_pd(lo0, lo1));
+    _mm256_store_pd(out + 4, _mm256_add_pd(hi0, hi1));
+}
+#endif
+
 /* y = T z (16 rows) and bnd = B |z| (8 rows) of entry en. */
 static void product(const leap_entry *en, const double *z, double *y, double *bnd) {
 #if LEAP_AVX2
-    __m256d a0 = _mm256_setzero_pd();
-    __m256d a1 = _mm256_setzero_pd();
-    __m256d a2 = _mm256_setzero_pd();
-    __m256d a3 = _mm256_setzero_pd();
-    __m256d b0 = _mm256_setzero_pd();
-    __m256d b1 = _mm256_setzero_pd();
-    const __m256d mag = _mm256_castsi256_pd(_mm256_set1_epi64x(0x7FFFFFFFFFFFFFFF));
-    for (int c = 0; c < NZ; c++) {
-        const __m256d zc = _mm256_broadcast_sd(&z[c]);
-        const __m256d ac = _mm256_and_pd(zc, mag);
-        const double *t = en->t[c];
-        const double *b = en->b[c];
-        a0 = _mm256_fmadd_pd(_mm256_load_pd(t), zc, a0);
-        a1 = _mm256_fmadd_pd(_mm256_load_pd(t + 4), zc, a1);
-        a2 = _mm256_fmadd_pd(_mm256_load_pd(t + 8), zc, a2);
-        a3 = _mm256_fmadd_pd(_mm256_load_pd(t + 12), zc, a3);
-        b0 = _mm256_fmadd_pd(_mm256_load_pd(b), ac, b0);
-        b1 = _mm256_fmadd_pd(_mm256_load_pd(b + 4), ac, b1);
-    }
-    _mm256_store_pd(y, a0);
-    _mm256_store_pd(y + 4, a1);
-    _mm256_store_pd(y + 8, a2);
-    _mm256_store_pd(y + 12, a3);
-    _mm256_store_pd(bnd, b0);
-    _mm256_store_pd(bnd + 4, b1);
+    /* Two sets of sums (even and odd columns), so that each chain of products is half as
+     * long: the leap's latency, which the next step waits for. */
+    /* A block at a time: the empty asm keeps the compiler from holding one block's
+     * broadcasts of z for the next (more registers than x86-64 has). */
+    block8(en->m[0], z, false, y);
+    __asm__ volatile("" : : "r"(z) : "memory");
+    block8(en->m[1], z, false, y + 8);
+    __asm__ volatile("" : : "r"(z) : "memory");
+    block8(en->m[2], z, true, bnd);
 #else
     for (int r = 0; r < NR; r++) {
         y[r] = 0.0;
@@ -340,10 +359,10 @@ static void product(const leap_entry *en, const double *z, double *y, double *bn
         const double zc = z[c];
         const double ac = fabs(zc);
         for (int r = 0; r < NR; r++) {
-            y[r] += en->t[c][r] * zc;
+            y[r] += T_AT(en, c, r) * zc;
         }
         for (int r = 0; r < NB; r++) {
-            bnd[r] += en->b[c][r] * ac;
+            bnd[r] += B_AT(en, c, r) * ac;
         }
     }
 #endif
