@@ -32,8 +32,10 @@ static const int z_jsh[2] = {Z_JSH_A, Z_JSH_B};
 #define R_SUM 11
 /* The rows the bound covers: z[0..7] (row 7, j_sh a, is not clamped: no limit). */
 #define NB 8
-/* The last step's outputs (inverter voltages a, b, DC-link current), for the run's end. */
-#define NO 4
+/* Rows 14, 15: the last step's DC-link voltage at its start and its DC-link current (the
+ * trace's inverter voltages and i_dc after a run that ends in a leap). */
+#define R_VDC_LAST 14
+#define R_IDC_LAST 15
 
 #define NS 8 /* switch states, bit x = leg x high */
 
@@ -57,7 +59,6 @@ static const int z_jsh[2] = {Z_JSH_A, Z_JSH_B};
  */
 typedef struct {
     double m[3][NZ][8] __attribute__((aligned(64)));
-    double o[NZ][NO] __attribute__((aligned(64))); /* the last step's outputs from z */
 } leap_entry;
 
 #define T_AT(e, c, r) ((e)->m[(r) >> 3][c][(r) & 7])
@@ -208,9 +209,8 @@ static void build_to(leap_tables *L, unsigned s, uint32_t k) {
             T_AT(cur, c, R_SUM + 0) = T_AT(prev, c, R_SUM + 0) + col[Z_VC_A];
             T_AT(cur, c, R_SUM + 1) = T_AT(prev, c, R_SUM + 1) + col[Z_VC_B];
             T_AT(cur, c, R_SUM + 2) = T_AT(prev, c, R_SUM + 2) + col[Z_VDC];
-            for (int r = 0; r < 3; r++) {
-                cur->o[c][r] = oc[r];
-            }
+            T_AT(cur, c, R_VDC_LAST) = p_at(prev, c, Z_VDC);
+            T_AT(cur, c, R_IDC_LAST) = oc[2];
             /* The second difference Q_{n-2} = P_n - 2 P_{n-1} + P_{n-2} on the clamped rows. */
             if (n >= 2u) {
                 const leap_entry *pp = &es[n - 2u];
@@ -250,6 +250,8 @@ static void tables_check(leap_tables *L, const drive_segment *d) {
 
 /* ---- The switching events ------------------------------------------------ */
 
+#define SCAN_MAX 64u /* steps scanned for edges at a time */
+
 /*
  * The leg signs (bit x: e_x > 0, e_x = r_x - c the leg's comparison) at
  * grid points 0..n from now, as the exact path forms them (pwm_rt_ends()):
@@ -257,12 +259,14 @@ static void tables_check(leap_tables *L, const drive_segment *d) {
  * vectorises.
  */
 static void scan_signs(const pwm_rt *p, uint32_t n, uint8_t *restrict sig) {
+    /* n <= SCAN_MAX */
     const uint32_t ph0 = p->ph_c;
     const uint32_t inc = p->inc_c;
     const uint32_t r0a = (uint32_t)p->r[0];
     const uint32_t r0b = (uint32_t)p->r[1];
     const uint32_t dra = (uint32_t)p->dr[0];
     const uint32_t drb = (uint32_t)p->dr[1];
+    int32_t w[SCAN_MAX + 1u];
     for (uint32_t j = 0u; j <= n; j++) {
         const uint32_t ph = ph0 + j * inc;
         const uint32_t x = ph >> 7;
@@ -270,8 +274,11 @@ static void scan_signs(const pwm_rt *p, uint32_t n, uint8_t *restrict sig) {
         const int32_t c = (int32_t)y - PWM_RT_ONE;
         const int32_t ra = (int32_t)(r0a + j * dra);
         const int32_t rb = (int32_t)(r0b + j * drb);
-        sig[j] = (uint8_t)((unsigned)(ra - c > 0) | ((unsigned)(rb - c > 0) << 1) |
-                           ((unsigned)(-ra - rb - c > 0) << 2));
+        w[j] = (int32_t)(ra - c > 0) | ((int32_t)(rb - c > 0) << 1) |
+               ((int32_t)(-ra - rb - c > 0) << 2);
+    }
+    for (uint32_t j = 0u; j <= n; j++) {
+        sig[j] = (uint8_t)w[j];
     }
 }
 
@@ -396,11 +403,23 @@ static bool leap_take(leap_tables *L, drive_segment *d, unsigned s, uint32_t k, 
     product(en, z, y, bnd);
     /* The bound on rows 0..7: max(|z|, |y|) + the second-difference term. */
     bool ok = true;
+#if LEAP_AVX2
+    const __m256d mag = _mm256_castsi256_pd(_mm256_set1_epi64x(0x7FFFFFFFFFFFFFFF));
+    for (int h = 0; h < 2; h++) {
+        const __m256d a0 = _mm256_and_pd(_mm256_load_pd(z + 4 * h), mag);
+        const __m256d a1 = _mm256_and_pd(_mm256_load_pd(y + 4 * h), mag);
+        const __m256d hi = _mm256_add_pd(_mm256_max_pd(a0, a1), _mm256_load_pd(bnd + 4 * h));
+        /* Ordered, non-signalling: false for a NaN too. */
+        const __m256d in = _mm256_cmp_pd(hi, _mm256_load_pd(bound_lim + 4 * h), _CMP_LE_OQ);
+        ok = ok && (_mm256_movemask_pd(in) == 0xF);
+    }
+#else
     for (int i = 0; i < NB; i++) {
         const double a0 = fabs(z[i]);
         const double a1 = fabs(y[i]);
         ok &= (((a0 > a1) ? a0 : a1) + bnd[i] <= bound_lim[i]); /* false for a NaN too */
     }
+#endif
     if (!ok) {
         L->st.bound_fails++;
         return false;
@@ -417,15 +436,14 @@ static bool leap_take(leap_tables *L, drive_segment *d, unsigned s, uint32_t k, 
     ps->v_dc = (float)y[Z_VDC];
     d->sums.v_dc += (float)y[R_SUM + 2];
     if (last) {
-        double o[NO] = {0.0, 0.0, 0.0, 0.0};
-        for (int c = 0; c < NZ; c++) {
-            for (int r = 0; r < NO; r++) {
-                o[r] += en->o[c][r] * z[c];
-            }
-        }
-        ps->u[0] = (float)o[0];
-        ps->u[1] = (float)o[1];
-        ps->i_dc = (float)o[2];
+        /* The last step's inverter voltages as the step forms them from its v_dc. */
+        const double v3 = y[R_VDC_LAST] * (double)(1.0f / 3.0f);
+        const double sa = (double)(s & 1u);
+        const double sb = (double)((s >> 1) & 1u);
+        const double sc = (double)((s >> 2) & 1u);
+        ps->u[0] = (float)(v3 * (2.0 * sa - sb - sc));
+        ps->u[1] = (float)(v3 * (2.0 * sb - sa - sc));
+        ps->i_dc = (float)y[R_IDC_LAST];
     }
     pwm_rt *rt = &d->rt;
     rt->ph_c += k * rt->inc_c;
@@ -471,8 +489,6 @@ static void stretch(leap_tables *L, drive_segment *d, unsigned s, uint32_t k, bo
         ordinary(L, d, k);
     }
 }
-
-#define SCAN_MAX 64u /* steps scanned for edges at a time */
 
 static void leap_run(void *ctx, drive_segment *d, uint32_t n) {
     leap_tables *L = ctx;
