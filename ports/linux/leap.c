@@ -318,28 +318,30 @@ static const double bound_lim[NB] __attribute__((aligned(64))) = {
 
 #if LEAP_AVX2
 /*
- * out = M z for a block of eight rows (magnitude: M |z|), as two sums (even
- * and odd columns) of each half, so that the chains of products are half as
- * long: the leap's latency, which the next step waits for.
+ * out = M z for a block of eight rows (magnitude: M |z|), as four sums (the
+ * columns by their index mod 4) added in a tree, so that each chain of
+ * products is a quarter as long: the leap's latency, which the next step
+ * waits for.
  */
 static inline void block8(const double (*m)[8], const double *z, bool magnitude, double *out) {
     const __m256d mag =
         _mm256_castsi256_pd(_mm256_set1_epi64x(magnitude ? 0x7FFFFFFFFFFFFFFF : (int64_t)-1));
-    __m256d lo0 = _mm256_setzero_pd();
-    __m256d lo1 = _mm256_setzero_pd();
-    __m256d hi0 = _mm256_setzero_pd();
-    __m256d hi1 = _mm256_setzero_pd();
-#pragma GCC unroll 16
-    for (int c = 0; c < NZ; c += 2) {
-        const __m256d z0 = _mm256_and_pd(_mm256_broadcast_sd(&z[c]), mag);
-        const __m256d z1 = _mm256_and_pd(_mm256_broadcast_sd(&z[c + 1]), mag);
-        lo0 = _mm256_fmadd_pd(_mm256_load_pd(m[c]), z0, lo0);
-        hi0 = _mm256_fmadd_pd(_mm256_load_pd(m[c] + 4), z0, hi0);
-        lo1 = _mm256_fmadd_pd(_mm256_load_pd(m[c + 1]), z1, lo1);
-        hi1 = _mm256_fmadd_pd(_mm256_load_pd(m[c + 1] + 4), z1, hi1);
+    __m256d lo[4];
+    __m256d hi[4];
+    for (int q = 0; q < 4; q++) {
+        lo[q] = _mm256_setzero_pd();
+        hi[q] = _mm256_setzero_pd();
     }
-    _mm256_store_pd(out, _mm256_add_pd(lo0, lo1));
-    _mm256_store_pd(out + 4, _mm256_add_pd(hi0, hi1));
+#pragma GCC unroll 16
+    for (int c = 0; c < NZ; c++) {
+        const int q = c & 3;
+        const __m256d zc = _mm256_and_pd(_mm256_broadcast_sd(&z[c]), mag);
+        lo[q] = _mm256_fmadd_pd(_mm256_load_pd(m[c]), zc, lo[q]);
+        hi[q] = _mm256_fmadd_pd(_mm256_load_pd(m[c] + 4), zc, hi[q]);
+    }
+    _mm256_store_pd(out, _mm256_add_pd(_mm256_add_pd(lo[0], lo[1]), _mm256_add_pd(lo[2], lo[3])));
+    _mm256_store_pd(out + 4,
+                    _mm256_add_pd(_mm256_add_pd(hi[0], hi[1]), _mm256_add_pd(hi[2], hi[3])));
 }
 #endif
 
