@@ -90,6 +90,7 @@ $(1)_FAIL_O := $$(filter-out %/test_harness.o,$$($(1)_TEST_O)) $$($(1)_DIR)/obj-
 # src/ is compiled freestanding on the host too, which proves it needs no libc.
 $$($(1)_DIR)/obj/src/%.o: XFLAGS := -ffreestanding
 $$($(1)_DIR)/obj/src/drive_fast_run.o: XFLAGS := -ffreestanding $$(if $$(findstring gcc,$(2)),$(DESK_RUN_GCC_FLAGS))
+$$($(1)_DIR)/obj/ports/linux/batch_lanes.o: XFLAGS := $(BATCH_LANES_FLAGS)
 $$($(1)_DIR)/obj/ports/linux/leap.o: XFLAGS := $(LEAP_ARCH)
 
 # The variant's compiler flags and the lists of files that take the fast and
@@ -97,7 +98,7 @@ $$($(1)_DIR)/obj/ports/linux/leap.o: XFLAGS := $(LEAP_ARCH)
 # object depends on them, so that a changed HOST_OPT rebuilds the variant.
 $$($(1)_DIR)/cflags: FORCE
 	@mkdir -p $$(@D)
-	@printf '%s\n' '$$(subst ','\'',$(2) $$($(1)_CFLAGS) $(DESK_RUN_GCC_FLAGS))' > $$@.tmp
+	@printf '%s\n' '$$(subst ','\'',$(2) $$($(1)_CFLAGS) $(DESK_RUN_GCC_FLAGS) $(BATCH_LANES_FLAGS))' > $$@.tmp
 	@cmp -s $$@.tmp $$@ || mv $$@.tmp $$@
 	@rm -f $$@.tmp
 
@@ -127,6 +128,11 @@ $$($(1)_DIR)/bench: $$($(1)_SRC_O) $$($(1)_BENCH_O)
 $$($(1)_DIR)/property: $$($(1)_SRC_O) $$($(1)_PROP_O)
 	$(2) $(5) -o $$@ $$^ -lm
 
+# uuvsim batch's lane step against the desk's runs of steps (tests/host/test_batch_lanes.c).
+$$($(1)_DIR)/test_batch_lanes: $$($(1)_SRC_O) $$($(1)_DIR)/obj/ports/linux/batch_lanes.o \
+        $$($(1)_DIR)/obj/tests/host/test_batch_lanes.o
+	$(2) $(5) -o $$@ $$^ -lm
+
 -include $$(wildcard $$($(1)_DIR)/obj/*/*.d $$($(1)_DIR)/obj/*/*/*.d $$($(1)_DIR)/obj/*/*/*/*.d $$($(1)_DIR)/obj/*/*/*/*/*.d $$($(1)_DIR)/obj/*/*/*/*/*/*.d)
 HOST_VARIANTS += $(1)
 endef
@@ -141,6 +147,10 @@ HOST_OPT := -O3 -g
 # (src/uuv_config.h, src/math/sqrt.c): the same bits as the integer version.
 HOST_SQRT := -DUUV_HW_SQRT_F64=1 -DUUV_HW_SQRT_F32=1 -fno-math-errno
 DESK_RUN_GCC_FLAGS := -fno-tree-pre
+# uuvsim batch's lanes (ports/linux/batch_lanes.c, host only) take the
+# build machine's vector width; BATCH_LANES_FLAGS= builds the portable
+# 4-lane form (any x86-64 or AArch64). The results are the same bits.
+BATCH_LANES_FLAGS ?= -march=native
 # The desk's exact leaps (ports/linux/leap.c, --fast-path leap): their maps
 # in the build host's AVX2 and FMA when it has them (an x86-64 without them,
 # AArch64: the compiler's baseline vectors). Any width gives correct leaps;
@@ -403,7 +413,7 @@ all: $(foreach v,linux-fixed linux-float,$(BUILD)/$(v)/uuvsim)
 
 host-all: $(foreach v,$(HOST_VARIANTS),$(BUILD)/$(v)/unit_tests $(BUILD)/$(v)/uuvsim) \
           $(BUILD)/linux-fixed/unit_tests_mustfail \
-          $(foreach v,linux-fixed linux-float,$(BUILD)/$(v)/property)
+          $(foreach v,linux-fixed linux-float,$(BUILD)/$(v)/property $(BUILD)/$(v)/test_batch_lanes)
 
 firmware: $(FW_IMAGES) $(FW_SIMS) $(BUILD)/cortexm-mps2-an385-fixed/unit_tests_mustfail.elf
 

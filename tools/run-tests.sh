@@ -128,6 +128,8 @@ for v in linux-fixed linux-float; do
     run "host $v output safety" pass sh tests/host/test_outputs.sh "$BUILD/$v/uuvsim"
     run "host $v batch: every run's outputs its single run's" pass sh tests/host/test_batch.sh \
         "$BUILD/$v/uuvsim"
+    run "host $v batch's lane step against drive_fast_run, bit for bit" pass \
+        "$BUILD/$v/test_batch_lanes"
 done
 for v in linux-fixed linux-float; do
     run "host $v parameter sets" pass sh tests/host/test_params.sh "$BUILD/$v/uuvsim"

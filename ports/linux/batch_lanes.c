@@ -1,12 +1,332 @@
 /*
  * The fast steps of several runs in SIMD lanes (batch_lanes.h).
+ *
+ * The lanes are GCC vector extensions (clang has them too) of BATCH_W
+ * elements, the target's widest vector of floats for the flags this file
+ * is built with (the Makefile builds it alone with the host's own
+ * instruction set, BATCH_LANES_FLAGS): 16 with AVX-512, 8 with AVX, 4
+ * otherwise (SSE2, NEON, or scalar code where the target has no vectors:
+ * the compiler lowers the operations, which stay correct at any width).
+ * Every lane operation is the scalar one, elementwise: IEEE single
+ * precision without contraction (-ffp-contract=off, the build's flag), the
+ * integers modulo 2^32 where the scalar code's values never leave their
+ * range, so each lane has the bits of its scalar run.
+ *
+ * The step below is fast_tick_plain()'s (drive_fast_run.c's plain_run())
+ * for the float build, piece by piece:
+ *   lane_duties()  pwm_rt_substep() / pwm_rt_sampled() (pwm_rt.h)
+ *   lane_phase()   ps_fast_phase_f32(), then the motor's fast companion
+ *                  i += (v_c - e) k_l and the frame sum of v_c
+ *   lane_step()    ps_fast_begin_f32(), the two phases, ps_fast_end_f32()
+ *                  and the frame sum of v_dc (power_stage_fast.h and
+ *                  power_stage_nodes.h's clamps and counts)
+ * The sub-step modulator's edges (a leg whose comparison changes sign
+ * within the step, a few legs in a hundred) take pwm_rt_edge_duty() itself,
+ * lane by lane, after a test whether any lane has one.
+ *
+ * The fixed build's step (Q3.28 products with 64-bit sums, rounded at each
+ * node) has no lane form here: its runs step one after another (scalar,
+ * batch_lanes_isa "scalar"), with the same bits.
  */
 #include "batch_lanes.h"
 
-const unsigned batch_lanes = 1u;
-const char batch_lanes_isa[] = "scalar";
+#include <string.h>
+
+#include "models/drive/inverter/power_stage_fast.h"
+#include "models/drive/pwm/pwm_rt.h"
 
 bool batch_lane_ready(const drive_segment *d) { return d->plain && d->fast_now == NULL; }
+
+#if UUV_NUMERIC == UUV_NUMERIC_FLOAT
+
+#if defined(__AVX512F__)
+#define BATCH_W 16
+#define BATCH_ISA "avx512"
+#elif defined(__AVX__)
+#define BATCH_W 8
+#define BATCH_ISA "avx"
+#elif defined(__SSE2__)
+#define BATCH_W 4
+#define BATCH_ISA "sse2"
+#elif defined(__ARM_NEON)
+#define BATCH_W 4
+#define BATCH_ISA "neon"
+#else
+#define BATCH_W 4
+#define BATCH_ISA "generic"
+#endif
+
+/*
+ * Vectors stepped side by side in one loop (-DBATCH_G=N): independent
+ * chains through the runs' DC links. 1 by default: with 16 lanes of
+ * AVX-512 the step is bound by its instructions, not by that chain (two
+ * vectors side by side measured 20 % slower per run-step).
+ */
+#ifndef BATCH_G
+#define BATCH_G 1
+#endif
+
+const unsigned batch_lanes = BATCH_W * BATCH_G;
+const char batch_lanes_isa[] = BATCH_ISA;
+
+typedef float vf __attribute__((vector_size(4 * BATCH_W)));
+typedef int32_t vi __attribute__((vector_size(4 * BATCH_W)));
+typedef uint32_t vu __attribute__((vector_size(4 * BATCH_W)));
+
+/* The lanes' state: what plain_run() keeps in locals, one element per run. */
+typedef struct {
+    /* Modulator (pwm_rt). */
+    vu ph_c, inc_c, den_sh;
+    vi r[2], dr[2];
+    vi s[3];
+    /* Stage (power_stage_f32): phases, DC link, inverter voltages, counts. */
+    vf i_l[2], v_c[2], i_d[2], j_sh[2];
+    vf v_dc, u[2], i_dc;
+    vu sat;
+    /* Its coefficients and the battery companion (held over the run). */
+    vf neg_eps_l, g_l2, neg_g_l, g_d, a_d, neg_a_d, k_node, neg_k_c;
+    vf bat_e, bat_kg;
+    /* The motor's fast companion and the frame sums. */
+    vf i_fast[2], e[2], k_l;
+    vf sum_v_cap[2], sum_v_dc;
+} lanes;
+
+/* A lane's element of a vector, to load and store one run. */
+#define LANE(v, l) (((union { __typeof__(v) w; __typeof__((v)[0]) x[BATCH_W]; } *)(void *)&(v))->x[l])
+
+static void lanes_load(lanes *L, unsigned l, const drive_segment *d) {
+    const pwm_rt *rt = &d->rt;
+    const power_stage_f32 *ps = &d->ps;
+    LANE(L->ph_c, l) = rt->ph_c;
+    LANE(L->inc_c, l) = rt->inc_c;
+    LANE(L->den_sh, l) = rt->den_sh;
+    for (int x = 0; x < 2; x++) {
+        LANE(L->r[x], l) = rt->r[x];
+        LANE(L->dr[x], l) = rt->dr[x];
+        LANE(L->i_l[x], l) = ps->ph[x].i_l;
+        LANE(L->v_c[x], l) = ps->ph[x].v_c;
+        LANE(L->i_d[x], l) = ps->ph[x].i_d;
+        LANE(L->j_sh[x], l) = ps->ph[x].j_sh;
+        LANE(L->u[x], l) = ps->u[x];
+        LANE(L->i_fast[x], l) = d->i_fast[x];
+        LANE(L->e[x], l) = d->e[x];
+        LANE(L->sum_v_cap[x], l) = d->sums.v_cap[x];
+    }
+    for (int x = 0; x < 3; x++) {
+        LANE(L->s[x], l) = d->s[x];
+    }
+    LANE(L->v_dc, l) = ps->v_dc;
+    LANE(L->i_dc, l) = ps->i_dc;
+    LANE(L->sat, l) = ps->sat_count;
+    LANE(L->neg_eps_l, l) = ps->k.neg_eps_l;
+    LANE(L->g_l2, l) = ps->k.g_l2;
+    LANE(L->neg_g_l, l) = ps->k.neg_g_l;
+    LANE(L->g_d, l) = ps->k.g_d;
+    LANE(L->a_d, l) = ps->k.a_d;
+    LANE(L->neg_a_d, l) = ps->k.neg_a_d;
+    LANE(L->k_node, l) = ps->k.k_node;
+    LANE(L->neg_k_c, l) = ps->k.neg_k_c;
+    LANE(L->bat_e, l) = d->in.battery.e_v;
+    LANE(L->bat_kg, l) = d->in.battery.kg;
+    LANE(L->k_l, l) = d->k_l;
+    LANE(L->sum_v_dc, l) = d->sums.v_dc;
+}
+
+/* Back into the drive: what plain_run() stores (the coefficients are unchanged). */
+static void lanes_store(const lanes *L0, unsigned l, drive_segment *d) {
+    lanes *L = (lanes *)(void *)(uintptr_t)L0; /* LANE() reads through a non-const view */
+    pwm_rt *rt = &d->rt;
+    power_stage_f32 *ps = &d->ps;
+    rt->ph_c = LANE(L->ph_c, l);
+    for (int x = 0; x < 2; x++) {
+        rt->r[x] = LANE(L->r[x], l);
+        ps->ph[x].i_l = LANE(L->i_l[x], l);
+        ps->ph[x].v_c = LANE(L->v_c[x], l);
+        ps->ph[x].i_d = LANE(L->i_d[x], l);
+        ps->ph[x].j_sh = LANE(L->j_sh[x], l);
+        ps->u[x] = LANE(L->u[x], l);
+        d->i_fast[x] = LANE(L->i_fast[x], l);
+        d->sums.v_cap[x] = LANE(L->sum_v_cap[x], l);
+    }
+    for (int x = 0; x < 3; x++) {
+        d->s[x] = LANE(L->s[x], l);
+    }
+    ps->v_dc = LANE(L->v_dc, l);
+    ps->i_dc = LANE(L->i_dc, l);
+    ps->sat_count = LANE(L->sat, l);
+    d->sums.v_dc = LANE(L->sum_v_dc, l);
+}
+
+/* Where the mask m is -1, a; where 0, b (bit for bit: floats through their bits). */
+static inline vi sel_i(vi m, vi a, vi b) { return (a & m) | (b & ~m); }
+static inline vu sel_u(vi m, vu a, vu b) { return (vu)sel_i(m, (vi)a, (vi)b); }
+static inline vf sel_f(vi m, vf a, vf b) { return (vf)sel_i(m, (vi)a, (vi)b); }
+
+/* pwm_rt_carrier(): the triangle in Q23 from the phase. */
+static inline vi lane_carrier(vu ph) {
+    const vu x = ph >> 7;
+    const vu y = sel_u((vi)((ph & 0x80000000u) != 0u), 0x2000000u - x, x);
+    return (vi)y - PWM_RT_ONE;
+}
+
+/* pwm_rt_neg(): 1 where v < 0. */
+static inline vi lane_neg(vi v) { return (vi)((vu)v >> 31); }
+
+/* A mask (-1 / 0) as a count to add (1 / 0). */
+static inline vu lane_one(vi mask) { return (vu)mask & 1u; }
+
+/*
+ * The modulator's step: pwm_rt_substep() or pwm_rt_sampled(), then the
+ * advance. A sub-step leg without a sign change of its comparison over the
+ * step is held (0 or the whole step); the legs with one (a few in a
+ * hundred) take pwm_rt_edge_duty() itself, lane by lane.
+ */
+static inline void lane_duties(lanes *L, bool substep, vi duty[3]) {
+    const vi ra = L->r[0];
+    const vi rb = L->r[1];
+    const vi c0 = lane_carrier(L->ph_c);
+    if (substep) {
+        const vi c1 = lane_carrier(L->ph_c + L->inc_c);
+        const vi ra1 = ra + L->dr[0];
+        const vi rb1 = rb + L->dr[1];
+        const vi e0[3] = {ra - c0, rb - c0, -ra - rb - c0};
+        const vi e1[3] = {ra1 - c1, rb1 - c1, -ra1 - rb1 - c1};
+        vi edge[3];
+        vi any = {0};
+        for (int x = 0; x < 3; x++) {
+            const vi p1 = (vi)(e1[x] > 0);
+            edge[x] = (vi)(e0[x] > 0) ^ p1;
+            any |= edge[x];
+            duty[x] = p1 & PWM_RT_DUTY_ONE;
+            L->s[x] = lane_neg(-e1[x]);
+        }
+        int32_t some = 0;
+        for (unsigned l = 0u; l < BATCH_W; l++) {
+            some |= LANE(any, l);
+        }
+        if (some != 0) {
+            for (unsigned l = 0u; l < BATCH_W; l++) {
+                for (int x = 0; x < 3; x++) {
+                    if (LANE(edge[x], l) != 0) {
+                        LANE(duty[x], l) =
+                            pwm_rt_edge_duty(LANE(e0[x], l), LANE(e1[x], l), LANE(L->den_sh, l));
+                    }
+                }
+            }
+        }
+    } else {
+        L->s[0] = lane_neg(c0 - ra);
+        L->s[1] = lane_neg(c0 - rb);
+        L->s[2] = lane_neg(c0 + ra + rb);
+        for (int x = 0; x < 3; x++) {
+            duty[x] = L->s[x] * PWM_RT_DUTY_ONE;
+        }
+    }
+    L->ph_c += L->inc_c;
+    L->r[0] = ra + L->dr[0];
+    L->r[1] = rb + L->dr[1];
+}
+
+/* ps_clamp_f32(): x within +-lim, each clamp counted (fp_count_sat()). */
+static inline vf lane_clamp(vf x, float lim, vu *sat) {
+    const vi hi = (vi)(x > lim);
+    const vi lo = (vi)(x < -lim);
+    *sat += lane_one((hi | lo) & (vi)(*sat < UINT32_MAX));
+    return sel_f(hi, (vf){0} + lim, sel_f(lo, (vf){0} - lim, x));
+}
+
+/* ps_fast_phase_f32() of phase x with the companion's current, then the companion and sum. */
+static inline void lane_phase(lanes *L, int x, vf dd, vf *t) {
+    const vf im = L->i_fast[x];
+    const vf i0 = L->i_l[x];
+    const vf j_l = (i0 + L->neg_eps_l * i0) + L->g_l2 * (L->u[x] - L->v_c[x]);
+    const vf dv = L->k_node * ((j_l + L->j_sh[x]) - im);
+    const vf i_l = lane_clamp(j_l + L->neg_g_l * dv, PS_I_LIM_F32, &L->sat);
+    const vf i_d =
+        lane_clamp((L->i_d[x] + L->neg_a_d * L->i_d[x]) + L->g_d * dv, PS_I_LIM_F32, &L->sat);
+    L->j_sh[x] = ((i_l - im) - 2.0f * i_d) + L->a_d * i_d;
+    L->v_c[x] = lane_clamp(L->v_c[x] + dv, PS_V_LIM_F32, &L->sat);
+    L->i_l[x] = i_l;
+    L->i_d[x] = i_d;
+    const vf term = dd * (i0 + i_l);
+    *t = (x == 0) ? term : *t + term;
+    const vf v = L->v_c[x];
+    L->i_fast[x] = im + (v - L->e[x]) * L->k_l;
+    L->sum_v_cap[x] += v;
+}
+
+/* One real-time step of every lane. */
+static inline void lane_step(lanes *L, bool substep) {
+    vi duty[3];
+    lane_duties(L, substep, duty);
+    const float q = 1.0f / 32768.0f;
+    const vf dq[3] = {__builtin_convertvector(duty[0], vf) * q,
+                      __builtin_convertvector(duty[1], vf) * q,
+                      __builtin_convertvector(duty[2], vf) * q};
+    const vf v3 = L->v_dc * (1.0f / 3.0f);
+    L->u[0] = v3 * ((2.0f * dq[0] - dq[1]) - dq[2]);
+    L->u[1] = v3 * ((2.0f * dq[1] - dq[0]) - dq[2]);
+    vf t = {0};
+    lane_phase(L, 0, dq[0] - dq[2], &t);
+    lane_phase(L, 1, dq[1] - dq[2], &t);
+    const vf i_dc = 0.5f * t;
+    L->v_dc = lane_clamp(L->v_dc + (L->bat_kg * (L->bat_e - L->v_dc) + L->neg_k_c * i_dc),
+                         PS_V_LIM_F32, &L->sat);
+    L->i_dc = i_dc;
+    L->sum_v_dc += L->v_dc;
+}
+
+/*
+ * n steps on a copy of the lanes in locals (so that the compiler keeps
+ * them in registers between the steps), stored back after the last.
+ */
+static inline void lanes_run_on(lanes *L, uint32_t n, const bool substep) {
+    lanes w[BATCH_G];
+    for (int g = 0; g < BATCH_G; g++) {
+        w[g] = L[g];
+    }
+    for (uint32_t k = 0u; k < n; k++) {
+        for (int g = 0; g < BATCH_G; g++) {
+            lane_step(&w[g], substep);
+        }
+    }
+    for (int g = 0; g < BATCH_G; g++) {
+        L[g] = w[g];
+    }
+}
+
+static void lanes_run(lanes *L, uint32_t n, bool substep) {
+    if (substep) {
+        lanes_run_on(L, n, true);
+    } else {
+        lanes_run_on(L, n, false);
+    }
+}
+
+void batch_fast_run(drive_segment *const *d, size_t count, uint32_t n, bool substep) {
+    static lanes L[BATCH_G];
+    const size_t width = (size_t)BATCH_W * BATCH_G;
+    for (size_t i0 = 0u; i0 < count; i0 += width) {
+        const size_t m = (count - i0 < width) ? count - i0 : width;
+        if (m == 1u) {
+            drive_fast_run(d[i0], n); /* one run: its own loop */
+            continue;
+        }
+        for (size_t l = 0u; l < width; l++) {
+            /* Lanes beyond the runs repeat the last one; their results are dropped. */
+            lanes_load(&L[l / BATCH_W], (unsigned)(l % BATCH_W), d[i0 + ((l < m) ? l : m - 1u)]);
+        }
+        lanes_run(L, n, substep);
+        for (size_t l = 0u; l < m; l++) {
+            lanes_store(&L[l / BATCH_W], (unsigned)(l % BATCH_W), d[i0 + l]);
+        }
+    }
+}
+
+#else /* UUV_NUMERIC_FIXED */
+
+const unsigned batch_lanes = 1u;
+const char batch_lanes_isa[] = "scalar";
 
 void batch_fast_run(drive_segment *const *d, size_t count, uint32_t n, bool substep) {
     (void)substep;
@@ -14,3 +334,5 @@ void batch_fast_run(drive_segment *const *d, size_t count, uint32_t n, bool subs
         drive_fast_run(d[i], n);
     }
 }
+
+#endif
