@@ -83,7 +83,8 @@ $(1)_CFLAGS := $(COMMON) $(4) -DUUV_NUMERIC=$(NUM_$(3)) -D_POSIX_C_SOURCE=200809
 $(1)_SRC_O := $$(patsubst %.c,$$($(1)_DIR)/obj/%.o,$(SRC_C) $(LINUX_PORT_C))
 $(1)_TEST_O := $$(patsubst %.c,$$($(1)_DIR)/obj/%.o,$(TEST_C))
 $(1)_UUVSIM_O := $$(patsubst %.c,$$($(1)_DIR)/obj/%.o,$(UUVSIM_C))
-$(1)_BENCH_O := $$($(1)_DIR)/obj/ports/linux/bench.o $$($(1)_DIR)/obj/ports/linux/leap.o
+$(1)_BENCH_O := $$($(1)_DIR)/obj/ports/linux/bench.o $$($(1)_DIR)/obj/ports/linux/leap.o \
+    $$($(1)_DIR)/obj/ports/linux/batch_lanes.o
 $(1)_PROP_O := $$($(1)_DIR)/obj/tests/host/property.o
 $(1)_FAIL_O := $$(filter-out %/test_harness.o,$$($(1)_TEST_O)) $$($(1)_DIR)/obj-mustfail/test_harness.o
 

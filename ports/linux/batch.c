@@ -262,62 +262,26 @@ static void free_runs(void) {
     n_runs = 0u;
 }
 
-/*
- * One pass: every running run to its next event tick. The runs whose next
- * steps can go in lanes, grouped by the count of steps and the modulator,
- * step together; each then finishes its tick on its own.
- */
+/* One pass: every running run to its next event tick (batch_step_all()), then its records. */
 static size_t batch_pass(void) {
-    static drive_segment *group[BATCH_MAX_RUNS];
-    static uint32_t ahead[BATCH_MAX_RUNS], most[BATCH_MAX_RUNS];
-    static bool lane[BATCH_MAX_RUNS], taken[BATCH_MAX_RUNS];
-    size_t running = 0u;
+    static exec *e[BATCH_MAX_RUNS];
+    static uint32_t most[BATCH_MAX_RUNS];
+    size_t n = 0u;
+    for (size_t i = 0; i < n_runs; i++) {
+        if (!runs[i]->done) {
+            e[n] = uuvsim_run_exec(runs[i]->u);
+            most[n++] = uuvsim_run_ahead(runs[i]->u);
+        }
+    }
+    batch_step_all(e, most, n);
     for (size_t i = 0; i < n_runs; i++) {
         batch_run *r = runs[i];
-        taken[i] = false;
-        lane[i] = false;
-        if (r->done) {
-            continue;
-        }
-        exec *e = uuvsim_run_exec(r->u);
-        most[i] = uuvsim_run_ahead(r->u);
-        ahead[i] = exec_desk_ahead(e, most[i]);
-        lane[i] = ahead[i] > 0u && e->desk_run == NULL && batch_lane_ready(&e->drive);
-        running++;
-    }
-    for (size_t i = 0; i < n_runs; i++) {
-        if (!lane[i] || taken[i]) {
-            continue;
-        }
-        const exec *ei = uuvsim_run_exec(runs[i]->u);
-        const drive_modulator mod = ei->drive.cfg.modulator;
-        size_t count = 0u;
-        for (size_t j = i; j < n_runs; j++) {
-            exec *ej = uuvsim_run_exec(runs[j]->u);
-            if (lane[j] && !taken[j] && ahead[j] == ahead[i] && ej->drive.cfg.modulator == mod) {
-                group[count++] = &ej->drive;
-                taken[j] = true;
-            }
-        }
-        batch_fast_run(group, count, ahead[i], mod == DRIVE_MODULATOR_SUBSTEP);
-    }
-    for (size_t i = 0; i < n_runs; i++) {
-        batch_run *r = runs[i];
-        if (r->done) {
-            continue;
-        }
-        exec *e = uuvsim_run_exec(r->u);
-        if (lane[i]) {
-            (void)exec_desk_finish(e, ahead[i], most[i]);
-        } else {
-            (void)exec_desk_run(e, most[i]);
-        }
-        uuvsim_run_after(r->u);
-        if (e->state != EXEC_RUNNING) {
-            r->done = true;
+        if (!r->done) {
+            uuvsim_run_after(r->u);
+            r->done = uuvsim_run_exec(r->u)->state != EXEC_RUNNING;
         }
     }
-    return running;
+    return n;
 }
 
 int batch_main(int argc, char **argv) {

@@ -37,6 +37,45 @@
 
 bool batch_lane_ready(const drive_segment *d) { return d->plain && d->fast_now == NULL; }
 
+#define BATCH_PASS_MAX 4096 /* executives per pass */
+
+void batch_step_all(exec *const *e, const uint32_t *most, size_t count) {
+    static drive_segment *group[BATCH_PASS_MAX];
+    static uint32_t ahead[BATCH_PASS_MAX];
+    static bool lane[BATCH_PASS_MAX], taken[BATCH_PASS_MAX];
+    for (size_t i0 = 0u; i0 < count; i0 += BATCH_PASS_MAX) {
+        const size_t m = (count - i0 < BATCH_PASS_MAX) ? count - i0 : BATCH_PASS_MAX;
+        exec *const *x = e + i0;
+        for (size_t i = 0; i < m; i++) {
+            ahead[i] = exec_desk_ahead(x[i], most[i0 + i]);
+            lane[i] = ahead[i] > 0u && x[i]->desk_run == NULL && batch_lane_ready(&x[i]->drive);
+            taken[i] = false;
+        }
+        for (size_t i = 0; i < m; i++) {
+            if (!lane[i] || taken[i]) {
+                continue;
+            }
+            const drive_modulator mod = x[i]->drive.cfg.modulator;
+            size_t n = 0u;
+            for (size_t j = i; j < m; j++) {
+                if (lane[j] && !taken[j] && ahead[j] == ahead[i] &&
+                    x[j]->drive.cfg.modulator == mod) {
+                    group[n++] = &x[j]->drive;
+                    taken[j] = true;
+                }
+            }
+            batch_fast_run(group, n, ahead[i], mod == DRIVE_MODULATOR_SUBSTEP);
+        }
+        for (size_t i = 0; i < m; i++) {
+            if (lane[i]) {
+                (void)exec_desk_finish(x[i], ahead[i], most[i0 + i]);
+            } else {
+                (void)exec_desk_run(x[i], most[i0 + i]);
+            }
+        }
+    }
+}
+
 #if UUV_NUMERIC == UUV_NUMERIC_FLOAT
 
 #if defined(__AVX512F__)

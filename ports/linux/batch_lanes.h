@@ -30,6 +30,7 @@
 #include <stdint.h>
 
 #include "drive_segment.h"
+#include "executive.h"
 
 /* Runs per vector: chosen at build time from the target's vector width. */
 extern const unsigned batch_lanes;
@@ -46,5 +47,14 @@ bool batch_lane_ready(const drive_segment *d);
  * bits for every i.
  */
 void batch_fast_run(drive_segment *const *d, size_t count, uint32_t n, bool substep);
+
+/*
+ * One pass of a batch: each of the count executives e[i] (running) through
+ * exec_desk_run(e[i], most[i]), with the same results; the runs of steps
+ * of those on the real-time path (and without a desk_run of their own) go
+ * through batch_fast_run() together, grouped by their length and
+ * modulator.
+ */
+void batch_step_all(exec *const *e, const uint32_t *most, size_t count);
 
 #endif /* UUV_BATCH_LANES_H */

@@ -38,6 +38,7 @@
 #include <time.h>
 
 #include "executive.h"
+#include "batch_lanes.h"
 #include "leap.h"
 #include "fixedpoint/wavetable.h"
 #include "models/drive/pwm/pwm_rt.h"
@@ -263,6 +264,52 @@ static int leap_mission(const exec_config *base) {
             100.0 * (double)st.leap_steps / (sim / (1e-9 * (double)c.fast_ns)));
     printf(", \"rtf_leap\": %.6g, \"rtf_exact_mission\": %.6g, \"leap_dev_rel\": %.6g",
            sim / cpu_leap, sim / cpu_exact, dev);
+    return 0;
+}
+
+/*
+ * Batched runs (uuvsim batch, batch_lanes.h) on the default mission:
+ * batch_lanes runs of its first tenth (24 s) side by side, against one
+ * such run alone; in whole missions (240 s) per second of CPU time.
+ */
+#define BATCH_BENCH_RUNS 64
+
+static int batch_mission(const exec_config *base) {
+    static exec *x[BATCH_BENCH_RUNS];
+    static uint32_t most[BATCH_BENCH_RUNS];
+    static run_data one;
+    const size_t n = (batch_lanes < BATCH_BENCH_RUNS) ? batch_lanes : BATCH_BENCH_RUNS;
+    exec_config c = *base;
+    c.duration_s = 0.1 * scn.duration_s;
+    if (run(&c, &one) != 0) {
+        return -1;
+    }
+    for (size_t i = 0; i < n; i++) {
+        x[i] = (x[i] != NULL) ? x[i] : malloc(sizeof *x[i]);
+        if (x[i] == NULL || exec_init(x[i], &c, &scn) != EXEC_OK) {
+            fprintf(stderr, "bench: the batch's runs could not start\n");
+            return -1;
+        }
+        most[i] = UINT32_MAX;
+    }
+    const double t0 = now_s();
+    for (bool running = true; running;) {
+        batch_step_all(x, most, n);
+        running = false;
+        for (size_t i = 0; i < n; i++) {
+            exec_frame f;
+            (void)exec_report_take(x[i], &f);
+            running = running || x[i]->state == EXEC_RUNNING;
+        }
+    }
+    const double cpu = now_s() - t0;
+    const double per_s = (double)n * 0.1 / cpu;
+    const double one_per_s = 0.1 / one.cpu_s;
+    fprintf(stderr, "  batched runs (%zu lanes, %s): %.2f default missions per second of CPU "
+                    "time against %.2f one at a time (x%.2f; target >= 2.5: %s)\n",
+            n, batch_lanes_isa, per_s, one_per_s, per_s / one_per_s, met(per_s >= 2.5));
+    printf(", \"batch_runs_per_s\": %.6g, \"batch_lanes\": %zu, \"single_runs_per_s\": %.6g",
+           per_s, n, one_per_s);
     return 0;
 }
 
@@ -717,7 +764,7 @@ int main(int argc, char **argv) {
             MISSION_PATH, avg.rec[avg.n - 1].t_s, rtf_mission, rtf_mission_target,
             met(rtf_mission >= rtf_mission_target));
     printf(", \"rtf_averaged_mission\": %.6g", rtf_mission);
-    if (leap_mission(&cfg) != 0) {
+    if (leap_mission(&cfg) != 0 || batch_mission(&cfg) != 0) {
         return 1;
     }
     if (load(argv[1]) != 0) {
