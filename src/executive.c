@@ -670,14 +670,50 @@ uint32_t exec_desk_finish(exec *e, uint32_t stepped, uint32_t max_ticks) {
     return n;
 }
 
+/*
+ * With a port's runner (e->desk_run): the ticks up to and including the
+ * next event's as one run of steps, the event's tick's work before its
+ * step (the boundary's second half, split) ahead of the run and its work
+ * after the step behind it, in exec_desk_step()'s order (no slow step is
+ * pending between events on the desk: the one a motor task releases runs
+ * in that task's tick). Returns 0 where this does not apply (the ticks
+ * without a step, the end).
+ */
+static uint32_t desk_run_hooked(exec *e, uint32_t max_ticks) {
+    const uint8_t gate = e->fast_gate;
+    if (max_ticks == 0u || e->cfg.plant != EXEC_PLANT_FULL ||
+        (gate != 0u && gate != EXEC_GATE_BEGIN) || e->slow_pending) {
+        return 0u;
+    }
+    if (gate == EXEC_GATE_BEGIN) {
+        e->fast_gate = 0u;
+        boundary_begin(e);
+    }
+    const uint32_t ahead = e->fast_event_at - e->fast_phase;
+    const uint32_t n = (ahead < max_ticks) ? ahead : max_ticks;
+    e->desk_run(e->desk_ctx, &e->drive, n);
+    e->fast_phase += n;
+    if (e->fast_phase == e->fast_event_at && fast_event(e) && exec_medium_tick(e)) {
+        exec_control_tick(e);
+    }
+    if (e->slow_pending) {
+        exec_slow_step(e);
+    }
+    return n;
+}
+
 uint32_t exec_desk_run(exec *e, uint32_t max_ticks) {
     if (desk_averaged(e)) {
         return desk_run_averaged(e, max_ticks);
     }
+    if (e->desk_run != NULL) {
+        const uint32_t k = desk_run_hooked(e, max_ticks);
+        if (k > 0u) {
+            return k;
+        }
+    }
     const uint32_t n = exec_desk_ahead(e, max_ticks);
-    if (n > 0u && e->desk_run != NULL) {
-        e->desk_run(e->desk_ctx, &e->drive, n);
-    } else if (n > 0u) {
+    if (n > 0u) {
         drive_fast_run(&e->drive, n);
     }
     return exec_desk_finish(e, n, max_ticks);

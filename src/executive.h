@@ -208,9 +208,10 @@ typedef struct {
     exec_frame report;
     bool report_ready;
     exec_counters count;
-    /* The desk's runs of fast steps (exec_desk_run()): NULL for drive_fast_run(), or a
-     * port's replacement called as desk_run(desk_ctx, drive, n) (the Linux port's exact
-     * leaps, ports/linux/leap.h). Set after exec_init(); the firmware never sets it. */
+    /* The desk's runs of fast steps (exec_desk_run()): NULL for drive_fast_run() on the
+     * ticks before an event, or a port's runner called as desk_run(desk_ctx, drive, n)
+     * on the ticks up to and including the event's (the Linux port's exact leaps,
+     * ports/linux/leap.h). Set after exec_init(); the firmware never sets it. */
     void (*desk_run)(void *ctx, drive_segment *d, uint32_t n);
     void *desk_ctx;
 } exec;
