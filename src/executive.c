@@ -671,6 +671,38 @@ uint32_t exec_desk_finish(exec *e, uint32_t stepped, uint32_t max_ticks) {
 }
 
 /*
+ * A whole split motor frame with a port's runner, its boundary's second
+ * half done: the release's work (the motor task, the controller, a slow
+ * step) first, then the frame's steps as one run, then the boundary's first
+ * half. The same results as the release EXEC_SPLIT_RELEASE_AT steps into
+ * the frame: nothing those tasks write reaches the fast steps before the
+ * next boundary (drive_segment.h), and none of them reads the steps. If
+ * the release's slow step ends the run, the frame's steps stop where they
+ * stop in exec_desk_step()'s order, at the release.
+ */
+static uint32_t desk_frame_hooked(exec *e) {
+    const uint32_t rel = e->fast_event_at;
+    e->fast_phase = rel;
+    if (fast_event(e) && exec_medium_tick(e)) {
+        exec_control_tick(e);
+    }
+    if (e->slow_pending) {
+        exec_slow_step(e);
+    }
+    e->fast_phase = 0u;
+    const uint32_t n = exec_fast_ended(e) ? rel : e->cfg.fast_per_medium;
+    e->desk_run(e->desk_ctx, &e->drive, n);
+    e->fast_phase = n;
+    if (e->fast_phase == e->fast_event_at && fast_event(e) && exec_medium_tick(e)) {
+        exec_control_tick(e);
+    }
+    if (e->slow_pending) {
+        exec_slow_step(e);
+    }
+    return n;
+}
+
+/*
  * With a port's runner (e->desk_run): the ticks up to and including the
  * next event's as one run of steps, the event's tick's work before its
  * step (the boundary's second half, split) ahead of the run and its work
@@ -688,6 +720,9 @@ static uint32_t desk_run_hooked(exec *e, uint32_t max_ticks) {
     if (gate == EXEC_GATE_BEGIN) {
         e->fast_gate = 0u;
         boundary_begin(e);
+        if (e->split && e->fast_phase == 0u && max_ticks >= e->cfg.fast_per_medium) {
+            return desk_frame_hooked(e);
+        }
     }
     const uint32_t ahead = e->fast_event_at - e->fast_phase;
     const uint32_t n = (ahead < max_ticks) ? ahead : max_ticks;
