@@ -91,7 +91,7 @@ $(1)_FAIL_O := $$(filter-out %/test_harness.o,$$($(1)_TEST_O)) $$($(1)_DIR)/obj-
 # src/ is compiled freestanding on the host too, which proves it needs no libc.
 $$($(1)_DIR)/obj/src/%.o: XFLAGS := -ffreestanding
 $$($(1)_DIR)/obj/src/drive_fast_run.o: XFLAGS := -ffreestanding $$(if $$(findstring gcc,$(2)),$(DESK_RUN_GCC_FLAGS))
-$$($(1)_DIR)/obj/ports/linux/batch_lanes.o: XFLAGS := $(BATCH_LANES_FLAGS)
+$$($(1)_DIR)/obj/ports/linux/batch_lanes.o: XFLAGS := $(BATCH_LANES_FLAGS) $$(if $$(findstring gcc,$(2)),-Wno-psabi)
 $$($(1)_DIR)/obj/ports/linux/leap.o: XFLAGS := $(LEAP_ARCH)
 
 # The variant's compiler flags and the lists of files that take the fast and
@@ -151,6 +151,8 @@ DESK_RUN_GCC_FLAGS := -fno-tree-pre
 # uuvsim batch's lanes (ports/linux/batch_lanes.c, host only) take the
 # build machine's vector width; BATCH_LANES_FLAGS= builds the portable
 # 4-lane form (any x86-64 or AArch64). The results are the same bits.
+# (GCC's -Wno-psabi there: its note on how wide vectors pass between the
+# file's own functions.)
 BATCH_LANES_FLAGS ?= -march=native
 # The desk's exact leaps (ports/linux/leap.c, --fast-path leap): their maps
 # in the build host's AVX2 and FMA when it has them (an x86-64 without them,

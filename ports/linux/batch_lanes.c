@@ -12,8 +12,9 @@
  * integers modulo 2^32 where the scalar code's values never leave their
  * range, so each lane has the bits of its scalar run.
  *
- * The step below is fast_tick_plain()'s (drive_fast_run.c's plain_run())
- * for the float build, piece by piece:
+ * The step below is fast_tick_plain()'s (drive_fast_run.c's plain_run()),
+ * piece by piece (the float build's names; the fixed build's are the _q
+ * twins):
  *   lane_duties()  pwm_rt_substep() / pwm_rt_sampled() (pwm_rt.h)
  *   lane_phase()   ps_fast_phase_f32(), then the motor's fast companion
  *                  i += (v_c - e) k_l and the frame sum of v_c
@@ -24,9 +25,12 @@
  * within the step, a few legs in a hundred) take pwm_rt_edge_duty() itself,
  * lane by lane, after a test whether any lane has one.
  *
- * The fixed build's step (Q3.28 products with 64-bit sums, rounded at each
- * node) has no lane form here: its runs step one after another (scalar,
- * batch_lanes_isa "scalar"), with the same bits.
+ * The fixed build's step is the same pieces in Q3.28 (lane_acc(),
+ * lane_mac(), lane_hi(): power_stage_nodes.h's 64-bit sums modulo 2^64 and
+ * their high words), with 64-bit lanes for the products and the frame sums;
+ * its filter update clamps every lane and takes the shunt history from the
+ * clamped values, which is ps_filter_update_q()'s result whether or not a
+ * value left the range.
  */
 #include "batch_lanes.h"
 
@@ -76,8 +80,6 @@ void batch_step_all(exec *const *e, const uint32_t *most, size_t count) {
     }
 }
 
-#if UUV_NUMERIC == UUV_NUMERIC_FLOAT
-
 #if defined(__AVX512F__)
 #define BATCH_W 16
 #define BATCH_ISA "avx512"
@@ -111,6 +113,21 @@ const char batch_lanes_isa[] = BATCH_ISA;
 typedef float vf __attribute__((vector_size(4 * BATCH_W)));
 typedef int32_t vi __attribute__((vector_size(4 * BATCH_W)));
 typedef uint32_t vu __attribute__((vector_size(4 * BATCH_W)));
+typedef int64_t vl __attribute__((vector_size(8 * BATCH_W)));
+typedef uint64_t vul __attribute__((vector_size(8 * BATCH_W)));
+
+/* The build's values and frame sums in lanes (drive_fast_run.c's plain_val, plain_sum). */
+#if UUV_NUMERIC == UUV_NUMERIC_FIXED
+typedef vi vs; /* Q3.28 */
+typedef vl vsum;
+#define DRIVE_BAT_E(d) ((d)->in.battery.e)
+#define DRIVE_GAIN(d) ((d)->k32)
+#else
+typedef vf vs; /* [A], [V] */
+typedef vf vsum;
+#define DRIVE_BAT_E(d) ((d)->in.battery.e_v)
+#define DRIVE_GAIN(d) ((d)->k_l)
+#endif
 
 /* The lanes' state: what plain_run() keeps in locals, one element per run. */
 typedef struct {
@@ -118,16 +135,16 @@ typedef struct {
     vu ph_c, inc_c, den_sh;
     vi r[2], dr[2];
     vi s[3];
-    /* Stage (power_stage_f32): phases, DC link, inverter voltages, counts. */
-    vf i_l[2], v_c[2], i_d[2], j_sh[2];
-    vf v_dc, u[2], i_dc;
+    /* Stage (power_stage_q / _f32): phases, DC link, inverter voltages, counts. */
+    vs i_l[2], v_c[2], i_d[2], j_sh[2];
+    vs v_dc, u[2], i_dc;
     vu sat;
     /* Its coefficients and the battery companion (held over the run). */
-    vf neg_eps_l, g_l2, neg_g_l, g_d, a_d, neg_a_d, k_node, neg_k_c;
-    vf bat_e, bat_kg;
-    /* The motor's fast companion and the frame sums. */
-    vf i_fast[2], e[2], k_l;
-    vf sum_v_cap[2], sum_v_dc;
+    vs neg_eps_l, g_l2, neg_g_l, g_d, a_d, neg_a_d, k_node, neg_k_c;
+    vs bat_e, bat_kg;
+    /* The motor's fast companion (its gain: k_l, or k32 in the fixed build) and the frame sums. */
+    vs i_fast[2], e[2], gain;
+    vsum sum_v_cap[2], sum_v_dc;
 } lanes;
 
 /* A lane's element of a vector, to load and store one run. */
@@ -135,18 +152,17 @@ typedef struct {
 
 static void lanes_load(lanes *L, unsigned l, const drive_segment *d) {
     const pwm_rt *rt = &d->rt;
-    const power_stage_f32 *ps = &d->ps;
     LANE(L->ph_c, l) = rt->ph_c;
     LANE(L->inc_c, l) = rt->inc_c;
     LANE(L->den_sh, l) = rt->den_sh;
     for (int x = 0; x < 2; x++) {
         LANE(L->r[x], l) = rt->r[x];
         LANE(L->dr[x], l) = rt->dr[x];
-        LANE(L->i_l[x], l) = ps->ph[x].i_l;
-        LANE(L->v_c[x], l) = ps->ph[x].v_c;
-        LANE(L->i_d[x], l) = ps->ph[x].i_d;
-        LANE(L->j_sh[x], l) = ps->ph[x].j_sh;
-        LANE(L->u[x], l) = ps->u[x];
+        LANE(L->i_l[x], l) = d->ps.ph[x].i_l;
+        LANE(L->v_c[x], l) = d->ps.ph[x].v_c;
+        LANE(L->i_d[x], l) = d->ps.ph[x].i_d;
+        LANE(L->j_sh[x], l) = d->ps.ph[x].j_sh;
+        LANE(L->u[x], l) = d->ps.u[x];
         LANE(L->i_fast[x], l) = d->i_fast[x];
         LANE(L->e[x], l) = d->e[x];
         LANE(L->sum_v_cap[x], l) = d->sums.v_cap[x];
@@ -154,52 +170,48 @@ static void lanes_load(lanes *L, unsigned l, const drive_segment *d) {
     for (int x = 0; x < 3; x++) {
         LANE(L->s[x], l) = d->s[x];
     }
-    LANE(L->v_dc, l) = ps->v_dc;
-    LANE(L->i_dc, l) = ps->i_dc;
-    LANE(L->sat, l) = ps->sat_count;
-    LANE(L->neg_eps_l, l) = ps->k.neg_eps_l;
-    LANE(L->g_l2, l) = ps->k.g_l2;
-    LANE(L->neg_g_l, l) = ps->k.neg_g_l;
-    LANE(L->g_d, l) = ps->k.g_d;
-    LANE(L->a_d, l) = ps->k.a_d;
-    LANE(L->neg_a_d, l) = ps->k.neg_a_d;
-    LANE(L->k_node, l) = ps->k.k_node;
-    LANE(L->neg_k_c, l) = ps->k.neg_k_c;
-    LANE(L->bat_e, l) = d->in.battery.e_v;
+    LANE(L->v_dc, l) = d->ps.v_dc;
+    LANE(L->i_dc, l) = d->ps.i_dc;
+    LANE(L->sat, l) = d->ps.sat_count;
+    LANE(L->neg_eps_l, l) = d->ps.k.neg_eps_l;
+    LANE(L->g_l2, l) = d->ps.k.g_l2;
+    LANE(L->neg_g_l, l) = d->ps.k.neg_g_l;
+    LANE(L->g_d, l) = d->ps.k.g_d;
+    LANE(L->a_d, l) = d->ps.k.a_d;
+    LANE(L->neg_a_d, l) = d->ps.k.neg_a_d;
+    LANE(L->k_node, l) = d->ps.k.k_node;
+    LANE(L->neg_k_c, l) = d->ps.k.neg_k_c;
+    LANE(L->bat_e, l) = DRIVE_BAT_E(d);
     LANE(L->bat_kg, l) = d->in.battery.kg;
-    LANE(L->k_l, l) = d->k_l;
+    LANE(L->gain, l) = DRIVE_GAIN(d);
     LANE(L->sum_v_dc, l) = d->sums.v_dc;
 }
 
 /* Back into the drive: what plain_run() stores (the coefficients are unchanged). */
-static void lanes_store(const lanes *L0, unsigned l, drive_segment *d) {
-    lanes *L = (lanes *)(void *)(uintptr_t)L0; /* LANE() reads through a non-const view */
-    pwm_rt *rt = &d->rt;
-    power_stage_f32 *ps = &d->ps;
-    rt->ph_c = LANE(L->ph_c, l);
+static void lanes_store(lanes *L, unsigned l, drive_segment *d) {
+    d->rt.ph_c = LANE(L->ph_c, l);
     for (int x = 0; x < 2; x++) {
-        rt->r[x] = LANE(L->r[x], l);
-        ps->ph[x].i_l = LANE(L->i_l[x], l);
-        ps->ph[x].v_c = LANE(L->v_c[x], l);
-        ps->ph[x].i_d = LANE(L->i_d[x], l);
-        ps->ph[x].j_sh = LANE(L->j_sh[x], l);
-        ps->u[x] = LANE(L->u[x], l);
+        d->rt.r[x] = LANE(L->r[x], l);
+        d->ps.ph[x].i_l = LANE(L->i_l[x], l);
+        d->ps.ph[x].v_c = LANE(L->v_c[x], l);
+        d->ps.ph[x].i_d = LANE(L->i_d[x], l);
+        d->ps.ph[x].j_sh = LANE(L->j_sh[x], l);
+        d->ps.u[x] = LANE(L->u[x], l);
         d->i_fast[x] = LANE(L->i_fast[x], l);
         d->sums.v_cap[x] = LANE(L->sum_v_cap[x], l);
     }
     for (int x = 0; x < 3; x++) {
         d->s[x] = LANE(L->s[x], l);
     }
-    ps->v_dc = LANE(L->v_dc, l);
-    ps->i_dc = LANE(L->i_dc, l);
-    ps->sat_count = LANE(L->sat, l);
+    d->ps.v_dc = LANE(L->v_dc, l);
+    d->ps.i_dc = LANE(L->i_dc, l);
+    d->ps.sat_count = LANE(L->sat, l);
     d->sums.v_dc = LANE(L->sum_v_dc, l);
 }
 
 /* Where the mask m is -1, a; where 0, b (bit for bit: floats through their bits). */
 static inline vi sel_i(vi m, vi a, vi b) { return (a & m) | (b & ~m); }
 static inline vu sel_u(vi m, vu a, vu b) { return (vu)sel_i(m, (vi)a, (vi)b); }
-static inline vf sel_f(vi m, vf a, vf b) { return (vf)sel_i(m, (vi)a, (vi)b); }
 
 /* pwm_rt_carrier(): the triangle in Q23 from the phase. */
 static inline vi lane_carrier(vu ph) {
@@ -266,6 +278,86 @@ static inline void lane_duties(lanes *L, bool substep, vi duty[3]) {
     L->r[1] = rb + L->dr[1];
 }
 
+#if UUV_NUMERIC == UUV_NUMERIC_FIXED
+
+/* ps_acc_q(), ps_mac_q(), ps_hi_q() (power_stage_nodes.h): a 64-bit sum modulo 2^64. */
+static inline vul lane_acc(vi base) {
+    return (__builtin_convertvector((vu)base, vul) << 32) | 0x80000000u;
+}
+
+static inline vul lane_mac(vul acc, vi x, vi c) {
+    return acc + (vul)(__builtin_convertvector(x, vl) * __builtin_convertvector(c, vl));
+}
+
+static inline vi lane_hi(vul acc) { return (vi)__builtin_convertvector(acc >> 32, vu); }
+
+/* ps_clamp_q(): within +-1 per unit (Q3.28), each clamp counted. */
+static inline vi lane_clamp(vi x, vu *sat) {
+    const vi out = (vi)((vu)x + (uint32_t)PS_Q28_ONE > 2u * (uint32_t)PS_Q28_ONE);
+    *sat += lane_one(out & (vi)(*sat < UINT32_MAX));
+    return sel_i(out, sel_i((vi)(x > 0), (vi){0} + PS_Q28_ONE, (vi){0} - PS_Q28_ONE), x);
+}
+
+/* ps_shunt_history_q(). */
+static inline vi lane_shunt(const lanes *L, vi i_l, vi i_d, vi i_m) {
+    const vu base = (vu)i_l - (vu)i_m - 2u * (vu)i_d;
+    return lane_hi(lane_mac(lane_acc((vi)base), i_d, L->a_d));
+}
+
+/*
+ * ps_fast_phase_q() of phase x with the companion's current, then the
+ * companion and the frame sum. ps_filter_update_q() clamps and redoes the
+ * shunt history only when a value leaves the range; a clamp of a value in
+ * range leaves it, so clamping every lane and taking the history from the
+ * clamped values is the same.
+ */
+static inline void lane_phase(lanes *L, int x, vi dd, vl *t) {
+    const vi im = L->i_fast[x];
+    const vi i0 = L->i_l[x];
+    const vi j_l =
+        lane_hi(lane_mac(lane_mac(lane_acc(i0), i0, L->neg_eps_l), L->u[x] - L->v_c[x], L->g_l2));
+    const vi dv = lane_hi(lane_mac(lane_acc((vi){0}), j_l + L->j_sh[x] - im, L->k_node));
+    const vi i_l = lane_clamp(lane_hi(lane_mac(lane_acc(j_l), dv, L->neg_g_l)), &L->sat);
+    const vi i_d = lane_clamp(
+        lane_hi(lane_mac(lane_mac(lane_acc(L->i_d[x]), L->i_d[x], L->neg_a_d), dv, L->g_d)),
+        &L->sat);
+    const vi v = lane_clamp(L->v_c[x] + dv, &L->sat);
+    L->j_sh[x] = lane_shunt(L, i_l, i_d, im);
+    L->v_c[x] = v;
+    L->i_l[x] = i_l;
+    L->i_d[x] = i_d;
+    *t += __builtin_convertvector(dd, vl) * __builtin_convertvector(i0 + i_l, vl);
+    L->i_fast[x] = lane_hi(lane_mac(lane_acc(im), v - L->e[x], L->gain));
+    L->sum_v_cap[x] += __builtin_convertvector(v, vl);
+}
+
+/* One real-time step of every lane (fixed build). */
+static inline void lane_step(lanes *L, bool substep) {
+    vi duty[3];
+    lane_duties(L, substep, duty);
+    /* ps_inverter_q(). */
+    const vi v3x8 = lane_hi(lane_mac(lane_acc((vi){0}), L->v_dc, (vi){0} + 0x55555555)) * 8;
+    const vi w_a = 2 * duty[0] - duty[1] - duty[2];
+    const vi w_b = 2 * duty[1] - duty[0] - duty[2];
+    L->u[0] = lane_hi(lane_mac(lane_acc((vi){0}), v3x8, w_a * 16384));
+    L->u[1] = lane_hi(lane_mac(lane_acc((vi){0}), v3x8, w_b * 16384));
+    vl t = {0};
+    lane_phase(L, 0, duty[0] - duty[2], &t);
+    lane_phase(L, 1, duty[1] - duty[2], &t);
+    /* ps_fast_end_q(): floor((T + 2^15) / 2^16), then the DC link. */
+    const vi i_dc = (vi)__builtin_convertvector((vul)((t + 32768) >> 16), vu);
+    L->v_dc = lane_clamp(
+        lane_hi(lane_mac(lane_mac(lane_acc(L->v_dc), L->bat_e - L->v_dc, L->bat_kg), i_dc,
+                         L->neg_k_c)),
+        &L->sat);
+    L->i_dc = i_dc;
+    L->sum_v_dc += __builtin_convertvector(L->v_dc, vl);
+}
+
+#else /* UUV_NUMERIC_FLOAT */
+
+static inline vf sel_f(vi m, vf a, vf b) { return (vf)sel_i(m, (vi)a, (vi)b); }
+
 /* ps_clamp_f32(): x within +-lim, each clamp counted (fp_count_sat()). */
 static inline vf lane_clamp(vf x, float lim, vu *sat) {
     const vi hi = (vi)(x > lim);
@@ -290,7 +382,7 @@ static inline void lane_phase(lanes *L, int x, vf dd, vf *t) {
     const vf term = dd * (i0 + i_l);
     *t = (x == 0) ? term : *t + term;
     const vf v = L->v_c[x];
-    L->i_fast[x] = im + (v - L->e[x]) * L->k_l;
+    L->i_fast[x] = im + (v - L->e[x]) * L->gain;
     L->sum_v_cap[x] += v;
 }
 
@@ -314,6 +406,8 @@ static inline void lane_step(lanes *L, bool substep) {
     L->i_dc = i_dc;
     L->sum_v_dc += L->v_dc;
 }
+
+#endif
 
 /*
  * n steps on a copy of the lanes in locals (so that the compiler keeps
@@ -361,17 +455,3 @@ void batch_fast_run(drive_segment *const *d, size_t count, uint32_t n, bool subs
         }
     }
 }
-
-#else /* UUV_NUMERIC_FIXED */
-
-const unsigned batch_lanes = 1u;
-const char batch_lanes_isa[] = "scalar";
-
-void batch_fast_run(drive_segment *const *d, size_t count, uint32_t n, bool substep) {
-    (void)substep;
-    for (size_t i = 0; i < count; i++) {
-        drive_fast_run(d[i], n);
-    }
-}
-
-#endif
