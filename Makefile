@@ -203,7 +203,7 @@ FW_FAST_KERNEL ?= 1
 # the executive's tick, the drive's step and boundary, the models it
 # calls); tools/fw-flags.sh checks each image after linking and fails the
 # build when a function on that path comes from a file not in this list.
-FW_FAST_C := src/drive_segment_fixed.c src/drive_segment_float.c src/executive.c \
+FW_FAST_C := src/drive_segment.c src/executive.c \
              ports/cortexm/hal_cortexm.c ports/cortexm/fw_main.c \
              $(wildcard src/models/drive/pwm/*.c src/models/drive/inverter/*.c) \
              src/models/drive/motor/induction_motor_q.c src/models/drive/motor/induction_motor_f32.c

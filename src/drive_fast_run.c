@@ -7,7 +7,7 @@
  * in memory each step. Any other path takes n drive_fast_step()s.
  *
  * The step is drive_fast_tick()'s real-time step (fast_tick_plain() in
- * drive_segment_fixed.c and drive_segment_float.c), composed of the same
+ * drive_segment.c), composed of the same
  * pieces (models/drive/inverter/power_stage_fast.h, models/drive/pwm/pwm_rt.h) in the same order,
  * here on the locals. It is a copy, not a shared function, so that the
  * interrupt's step keeps the code the compiler gives it on its own

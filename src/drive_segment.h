@@ -2,9 +2,9 @@
  * The electric drive as the executive runs it: the fast segment (PWM,
  * inverter, DC link and LC filter), the fast-medium segment (induction
  * motor) and the slow-medium segment (controller), with the data that cross
- * between them. One implementation per numeric build
- * (drive_segment_fixed.c, drive_segment_float.c), chosen by UUV_NUMERIC;
- * this interface is the same for both.
+ * between them. One implementation (drive_segment.c) for both numeric
+ * builds; what differs between them is the build's numeric adapter
+ * (drive_num_q.h, drive_num_f32.h), chosen by UUV_NUMERIC.
  *
  * The motor's fast companion. The motor runs at its 100 us frame, but the
  * filter capacitors it loads are solved every 2 us; a motor current held
@@ -208,39 +208,49 @@ static inline bool drive_options_built(drive_inverter inverter, coupling_down do
 typedef struct drive_segment drive_segment;
 typedef void drive_fast_kernel(drive_segment *d);
 
+/* The build's numeric adapter: its types and arithmetic (DRIVE_NUM, num_*). */
 #if UUV_NUMERIC == UUV_NUMERIC_FIXED
+#include "drive_num_q.h"
+#else
+#include "drive_num_f32.h"
+#endif
 
-/* Sums of one motor frame, from the fast steps (Q3.28 per unit summed). */
+/*
+ * The fields below are in the build's units: the fixed build's per unit
+ * (drive_num_q.h says which format), the float build's SI.
+ */
+
+/* Sums of one motor frame, from the fast steps. */
 typedef struct {
-    int64_t v_cap[2];  /* capacitor voltages a, b (c = -a - b) */
-    int64_t v_dc;      /* DC-link voltage */
-    int32_t i_mark[2]; /* the fast motor currents a, b at the boundary, Q3.28 of 256 A */
-    int32_t v_mark[2]; /* capacitor voltages at the boundary (sampled coupling), Q3.28 */
-    int64_t filt_mark[2]; /* filtered capacitor voltages at the boundary, Q3.28 << 16 */
-    int64_t loss_l, loss_d; /* energy audit: sums of i_L^2, i_d^2 over phases and steps, A^2 2^16 */
+    num_sum v_cap[2];  /* capacitor voltages a, b (c = -a - b) */
+    num_sum v_dc;      /* DC-link voltage */
+    num_val i_mark[2]; /* the fast motor currents a, b at the boundary */
+    num_val v_mark[2]; /* capacitor voltages at the boundary (sampled coupling) */
+    num_filt filt_mark[2]; /* filtered capacitor voltages at the boundary */
+    num_sum loss_l, loss_d; /* energy audit: sums of i_L^2, i_d^2 over phases and steps */
     uint32_t sat;      /* the fast models' saturation count at the boundary */
 } drive_frame_sums;
 
 /* What the motor task publishes for the next frame, latched at its boundary. */
 typedef struct {
     pwm_rt_ramp ramp;          /* references of the real-time modulator */
-    int32_t e[2];              /* EMF at the frame start, Q3.28 of 1024 V */
-    int32_t de[2];             /* its change per fast step (FOH, DERIV) */
-    int32_t corr[2];           /* motor minus fast current at the last frame end, Q3.28 */
+    num_val e[2];              /* EMF at the frame start */
+    num_val de[2];             /* its change per fast step (FOH, DERIV) */
+    num_val corr[2];           /* motor minus fast current at the last frame end */
     bool cmd_new;              /* a new command for the general modulators */
-    drive_control_out_q cmd;
+    DRIVE_NUM(drive_control_out) cmd;
 } drive_latch;
 
 /* The slow frame's raw sums, handed from the motor task to the background. */
 typedef struct {
-    int64_t v_dc, v_dc_sq, w, te, i_sq[3], p_mech;
-    int64_t loss_l, loss_d;    /* the frames' loss sums (energy audit) */
+    num_slow v_dc, v_dc_sq, w, te, i_sq[3], p_mech;
+    num_slow loss_l, loss_d;   /* the frames' loss sums (energy audit) */
     double e_loss_motor_j;     /* [J] motor copper losses (energy audit) */
     uint32_t fast_n, medium_n;
     uint32_t limit_n;          /* controller frames with the torque (slip) limit acting */
-    q31_t w_filt, w_end;       /* filtered and final shaft speed, Q31 of 512 rad/s */
-    int32_t v_dc_end;          /* Q3.28 of 1024 V */
-    drive_control_out_q cmd;   /* the command in force at the boundary */
+    num_val w_filt, w_end;     /* filtered and final shaft speed */
+    num_val v_dc_end;          /* DC-link voltage at the boundary */
+    DRIVE_NUM(drive_control_out) cmd; /* the command in force at the boundary */
     uint32_t saturations;
     uint8_t trip;              /* drive_trip at the boundary */
 } drive_slow_sums;
@@ -252,53 +262,49 @@ struct drive_segment {
     /* Fast segment: the real-time modulator and power stage (switching), or the general ones. */
     pwm_rt rt;
     int32_t s[3];               /* leg states of the last step (switching) */
-    pwm_q pwm;
-    power_stage_q ps;
-    inverter_qs_q qs;           /* the averaged layer's stage */
-    inverter_qs_bus_q bus, bus_next; /* its DC-link constants: in force, for the next slow frame */
-    pwm_q *mod;                 /* the general modulator in use (event or averaged) */
-    power_stage_q *stage;       /* the power stage in use (ps; NULL in the averaged layer) */
-    pwm_out_q pout;             /* the general modulator's last step */
-    power_stage_in_q in;        /* duties, motor currents (Q15), battery: the fast inputs */
-    /* The motor's fast companion (see drive_segment.h): currents a, b, EMF. */
-    int32_t i_fast[2];          /* Q3.28 of 256 A (the power stage's format) */
-    int32_t e[2];               /* Q3.28 of 1024 V, the EMF in force */
-    int32_t e_step[2];          /* its change per fast step (FOH, DERIV) */
-    int32_t k32;                /* a_ss h1 * 4 * 2^32: Q3.28 current step per Q3.28 volt */
-    int32_t k_mant;             /* the same as mantissa and right shift, for any step */
-    uint32_t k_shift;
-    int32_t e_mant;             /* 1 / (k_l N) as mantissa ... */
-    uint32_t e_shift;           /* ... and shift: Q3.28 volts per Q31 current change */
-    int64_t filt[2];            /* filtered capacitor voltages (COUPLE_FILTER), Q3.28 << 16 */
-    uint32_t filt_k;            /* filter gain per fast step, Q16 */
-    q31_t k_deriv;              /* EMF rotation per fast step per unit frequency: 2 pi 128 Hz T / sqrt 3 */
+    DRIVE_NUM(pwm) pwm;
+    DRIVE_NUM(power_stage) ps;
+    DRIVE_NUM(inverter_qs) qs;  /* the averaged layer's stage */
+    DRIVE_NUM(inverter_qs_bus) bus, bus_next; /* its DC-link constants: in force, next slow frame */
+    DRIVE_NUM(pwm) *mod;        /* the general modulator in use (event or averaged) */
+    DRIVE_NUM(power_stage) *stage; /* the power stage in use (ps; NULL in the averaged layer) */
+    DRIVE_NUM(pwm_out) pout;    /* the general modulator's last step */
+    DRIVE_NUM(power_stage_in) in; /* duties, motor currents, battery: the fast inputs */
+    /* The motor's fast companion (see above): currents a, b, EMF. */
+    num_val i_fast[2];          /* in the power stage's format */
+    num_val e[2];               /* the EMF in force */
+    num_val e_step[2];          /* its change per fast step (FOH, DERIV) */
+    num_val NUM_RT_GAIN;        /* the companion's gain on the real-time path */
+    num_consts k;               /* the companion's and the EMF's other constants */
+    num_filt filt[2];           /* filtered capacitor voltages (COUPLE_FILTER) */
+    num_frac filt_k;            /* filter gain per fast step */
+    num_val k_deriv;            /* EMF rotation per fast step per unit frequency */
     drive_frame_sums sums;      /* the frame being summed */
     /* Buffers between the fast step and the motor task. */
     drive_frame_sums medium_in; /* published at the boundary, read by the motor task */
     drive_latch out;            /* written by the motor task, latched at the next boundary */
     /* Fast-medium segment: the motor. */
-    induction_motor_q motor;
-    induction_motor_out_q mout;
-    q31_t i_prev[2];            /* motor currents at the frame start */
-    int32_t e_prev[2];          /* EMF of the previous frame (FOH) */
-    int32_t corr_prev[2];       /* the last drift correction, steered out through the EMF */
-    uint32_t corr_pending;      /* steps of it still to come at a frame's mark */
+    DRIVE_NUM(induction_motor) motor;
+    DRIVE_NUM(induction_motor_out) mout;
+    num_val i_prev[2];          /* motor currents at the frame start */
+    num_val e_prev[2];          /* EMF of the previous frame (FOH) */
+    num_val corr_prev[2];       /* the last drift correction, steered out through the EMF */
+    num_frac corr_pending;      /* how much of it is still to come at a frame's mark */
     uint32_t ref_ph;            /* reference phase at the start of the next frame to ramp */
-    drive_control_out_q cmd;    /* the controller command in force */
+    DRIVE_NUM(drive_control_out) cmd; /* the controller command in force */
     /* Slow-medium segment: the controller, its own task. */
     drive_control_params ctl_params;
-    drive_control_q ctl;
-    drive_control_in_q ctl_in;  /* latched by the motor task at the controller's release */
-    drive_control_out_q ctl_out; /* written by the controller task */
+    DRIVE_NUM(drive_control) ctl;
+    DRIVE_NUM(drive_control_in) ctl_in; /* latched by the motor task at the controller's release */
+    DRIVE_NUM(drive_control_out) ctl_out; /* written by the controller task */
     bool ctl_done;              /* ctl_out holds a result not yet taken */
-    uint32_t ctl_sat;           /* the controller's saturation count after its last step */
-    uint32_t ctl_sat_taken;     /* ... as the motor task took it with the result */
-    q31_t speed_cmd;            /* Q31 of 512 rad/s */
+    NUM_CONTROL_SAT_FIELDS      /* the controller's saturation count, where it counts */
+    num_val speed_cmd;          /* the shaft speed command */
     /* Slow sums, kept by the motor task. */
     drive_slow_sums slow;       /* the slow frame being summed */
     drive_slow_sums slow_out;   /* the last slow frame's, for the background */
-    q31_t w_filt;               /* filtered shaft speed (COUPLE_FILTER) */
-    ps_battery_q battery_next;  /* battery companion waiting for the next slow boundary */
+    num_val w_filt;             /* filtered shaft speed (COUPLE_FILTER) */
+    DRIVE_NUM(ps_battery) battery_next; /* battery companion waiting for the next slow boundary */
     bool battery_new;           /* battery_next is new (background -> fast tick) */
     bool battery_taken;         /* it took over at this slow boundary (fast tick -> motor task) */
     drive_battery bat_next, bat_in_force, bat_done; /* the same in SI: next, now, last frame
@@ -307,10 +313,10 @@ struct drive_segment {
     /* Faults: requested by the slow segment, applied at a slow boundary. */
     drive_faults fault, fault_next;
     bool fault_new;
-    int32_t neg_k_c_next;       /* the DC-link coefficient for fault_next */
-    induction_motor_drag_q load_next; /* the motor's drag rows for fault_next */
-    q31_t i_offset, i_offset_next; /* the current-sensor offset, Q31 of 256 A */
-    int32_t uv_q28;             /* DRIVE_UV_TRIP_V, Q3.28 of 1024 V */
+    num_val neg_k_c_next;       /* the DC-link coefficient for fault_next */
+    DRIVE_NUM(induction_motor_drag) load_next; /* the motor's drag rows for fault_next */
+    num_val i_offset, i_offset_next; /* the current-sensor offset */
+    num_val uv;                 /* DRIVE_UV_TRIP_V */
     power_stage_params ps_params; /* the stage's parameters, the capacitance as faulted */
     uint8_t trip;               /* drive_trip: written by the fast step only */
     uint8_t trip_req;           /* a trip the background requested, applied at a slow boundary */
@@ -320,105 +326,6 @@ struct drive_segment {
     bool kernel_ok;             /* the real-time path is the one a port's kernel computes */
     drive_fast_kernel *kernel;  /* a port's real-time step, or NULL (drive_use_fast_kernel) */
 };
-
-#else /* UUV_NUMERIC_FLOAT */
-
-typedef struct {
-    float v_cap[2];   /* [V] capacitor voltages a, b summed over the frame */
-    float v_dc;       /* [V] summed */
-    float i_mark[2];  /* [A] fast motor currents at the boundary */
-    float v_mark[2];  /* [V] capacitor voltages at the boundary */
-    float filt_mark[2]; /* [V] filtered capacitor voltages at the boundary */
-    float loss_l, loss_d; /* [A^2] energy audit: sums of i_L^2, i_d^2 over phases and steps */
-    uint32_t sat;     /* the fast models' saturation count at the boundary */
-} drive_frame_sums;
-
-typedef struct {
-    pwm_rt_ramp ramp;
-    float e[2];                /* [V] */
-    float de[2];               /* [V per fast step] */
-    float corr[2];             /* [A] */
-    bool cmd_new;
-    drive_control_out_f32 cmd;
-} drive_latch;
-
-typedef struct {
-    /* In double: one slow frame holds up to 50000 fast steps. */
-    double v_dc, v_dc_sq, w, te, i_sq[3], p_mech;
-    double loss_l, loss_d;     /* [A^2] the frames' loss sums (energy audit) */
-    double e_loss_motor_j;     /* [J] motor copper losses (energy audit) */
-    uint32_t fast_n, medium_n;
-    uint32_t limit_n;          /* controller frames with the torque (slip) limit acting */
-    float w_filt, w_end;       /* [rad/s] */
-    float v_dc_end;            /* [V] */
-    drive_control_out_f32 cmd;
-    uint32_t saturations;
-    uint8_t trip;
-} drive_slow_sums;
-
-struct drive_segment {
-    drive_config cfg;
-    bool plain;
-    drive_fast_kernel *fast_now;
-    pwm_rt rt;
-    int32_t s[3];
-    pwm_f32 pwm;
-    power_stage_f32 ps;
-    inverter_qs_f32 qs;
-    inverter_qs_bus_f32 bus, bus_next;
-    pwm_f32 *mod;
-    power_stage_f32 *stage;
-    pwm_out_f32 pout;
-    power_stage_in_f32 in;
-    float i_fast[2];            /* [A] */
-    float e[2];                 /* [V] */
-    float e_step[2];            /* [V per fast step] */
-    float k_l;                  /* [A/V per fast step] a_ss h1 */
-    float e_per_di;             /* [V/A] 1 / (a_ss h2) */
-    float filt[2];              /* [V] */
-    float filt_k;
-    float k_deriv;              /* [1/Hz] 2 pi T / sqrt 3 */
-    drive_frame_sums sums;
-    drive_frame_sums medium_in;
-    drive_latch out;
-    induction_motor_f32 motor;
-    induction_motor_out_f32 mout;
-    float i_prev[2];
-    float e_prev[2];
-    float corr_prev[2];         /* [A] */
-    float corr_pending;         /* [-] the share of it still to come at a frame's mark */
-    uint32_t ref_ph;
-    drive_control_out_f32 cmd;
-    drive_control_params ctl_params;
-    drive_control_f32 ctl;
-    drive_control_in_f32 ctl_in;
-    drive_control_out_f32 ctl_out;
-    bool ctl_done;
-    float speed_cmd;            /* [rad/s] */
-    drive_slow_sums slow, slow_out;
-    float w_filt;
-    ps_battery_f32 battery_next;
-    bool battery_new;
-    bool battery_taken;
-    drive_battery bat_next, bat_in_force, bat_done;
-    uint32_t ps_clamps;
-    /* Faults: requested by the slow segment, applied at a slow boundary. */
-    drive_faults fault, fault_next;
-    bool fault_new;
-    float neg_k_c_next;         /* [ohm] the DC-link coefficient for fault_next */
-    induction_motor_drag_f32 load_next; /* the motor's drag for fault_next */
-    float i_offset, i_offset_next; /* [A] the current-sensor offset */
-    power_stage_params ps_params;
-    uint8_t trip;
-    uint8_t trip_req;
-    bool uv_req;
-    bool plain_ok;
-    bool staggered;
-    bool kernel_ok;
-    drive_fast_kernel *kernel;
-};
-
-#endif
 
 /* Checks the configuration and initialises every model at its step. */
 drive_status drive_init(drive_segment *d, const drive_config *cfg, const propeller_model *prop);

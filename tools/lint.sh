@@ -37,7 +37,7 @@ $1 !~ /^[0-9]+\.[0-9]+$/ || $2 !~ /^[AD]$/ || $3 !~ /^[0-9]+$/ || NF < 5 {
 }
 END { exit bad > 0 }' "$devfile" || exit 1
 
-# 2. cppcheck: every file in the fixed build, the float-only file in the float build.
+# 2. cppcheck: every file in the fixed build, the drive segment again in the float build.
 cpp() { # cache-dir numeric files...
     cache=$1; num=$2; shift 2
     cppcheck --addon=misra --std=c99 --platform=unix64 -Isrc -DUUV_NUMERIC="$num" \
@@ -46,7 +46,7 @@ cpp() { # cache-dir numeric files...
 }
 {
     cpp "$out/cache-fixed" 1 src/
-    cpp "$out/cache-float" 2 src/drive_segment_float.c
+    cpp "$out/cache-float" 2 src/drive_segment.c
 } | sort -u > "$out/cppcheck.txt"
 
 # 3. Each finding against the deviations (a glob's * also matches '/').
@@ -104,7 +104,7 @@ export TIDY_CHECKS TIDY_FLAGS
 {
     find src -name "*.c" | sort | xargs -P "$jobs" -I{} sh -c \
         'clang-tidy --quiet -checks="$TIDY_CHECKS" {} -- $TIDY_FLAGS -DUUV_NUMERIC=1 2>/dev/null'
-    tidy_one src/drive_segment_float.c 2
+    tidy_one src/drive_segment.c 2
 } > "$out/clang-tidy.txt"
 tidy_n=$(grep -cE ': (warning|error): ' "$out/clang-tidy.txt")
 grep -E ': (warning|error): ' "$out/clang-tidy.txt" | sed 's/^/  /'
