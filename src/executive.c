@@ -271,6 +271,7 @@ static void overrun(exec *e, uint32_t *counter) {
 }
 
 /* The boundary's second half (decided at the last release: slow_due). */
+static inline void boundary_begin(exec *e) __attribute__((always_inline));
 static inline void boundary_begin(exec *e) {
     e->rel_slow = e->slow_due;
     drive_medium_begin(&e->drive, e->slow_due);
@@ -342,6 +343,19 @@ static bool fast_event(exec *e) {
     return boundary_end(e);
 }
 
+/*
+ * The fast tick's count and event after its step (exec_fast_tick(), and
+ * the desk's batches: exec_desk_tick_end()).
+ */
+/* Inlined in every build (the Cortex-M3's -Os too), so that exec_fast_tick()'s code is its own. */
+static inline bool fast_tick_after(exec *e) __attribute__((always_inline));
+static inline bool fast_tick_after(exec *e) {
+    if (++e->fast_phase != e->fast_event_at) {
+        return false;
+    }
+    return fast_event(e);
+}
+
 bool exec_fast_tick(exec *e) {
     uint8_t gate = e->fast_gate;
     if (gate != 0u) {
@@ -353,10 +367,7 @@ bool exec_fast_tick(exec *e) {
         boundary_begin(e);
     }
     drive_fast_step(&e->drive);
-    if (++e->fast_phase != e->fast_event_at) {
-        return false;
-    }
-    return fast_event(e);
+    return fast_tick_after(e);
 }
 
 bool exec_medium_tick(exec *e) {
@@ -581,18 +592,24 @@ void exec_slow_step(exec *e) {
     }
 }
 
-void exec_desk_step(exec *e) {
-    if (e->cfg.plant == EXEC_PLANT_VESSEL) {
-        exec_slow_step(e);
-        return;
-    }
-    if (exec_fast_tick(e) && exec_medium_tick(e)) {
+/* What a desk tick runs after its fast tick: the tasks it released, a slow step. */
+static void desk_after_tick(exec *e, bool released) {
+    if (released && exec_medium_tick(e)) {
         exec_control_tick(e);
     }
     if (e->slow_pending) {
         exec_slow_step(e);
     }
 }
+
+void exec_desk_step(exec *e) {
+    if (e->cfg.plant == EXEC_PLANT_VESSEL) {
+        exec_slow_step(e);
+        return;
+    }
+    desk_after_tick(e, exec_fast_tick(e));
+}
+
 
 /*
  * The averaged layer's frames (inverter averaged: one fast tick, one motor
@@ -736,6 +753,21 @@ static uint32_t desk_run_hooked(exec *e, uint32_t max_ticks) {
     }
     return n;
 }
+
+bool exec_desk_tick_begin(exec *e) {
+    if (e->cfg.plant != EXEC_PLANT_FULL || desk_averaged(e) ||
+        (e->fast_gate != 0u && e->fast_gate != EXEC_GATE_BEGIN)) {
+        return false;
+    }
+    if (e->fast_gate == EXEC_GATE_BEGIN) {
+        /* exec_fast_tick()'s work before its step. */
+        e->fast_gate = 0u;
+        boundary_begin(e);
+    }
+    return true;
+}
+
+void exec_desk_tick_end(exec *e) { desk_after_tick(e, fast_tick_after(e)); }
 
 uint32_t exec_desk_run(exec *e, uint32_t max_ticks) {
     if (desk_averaged(e)) {

@@ -325,6 +325,20 @@ uint32_t exec_desk_ahead(const exec *e, uint32_t max_ticks);
 uint32_t exec_desk_finish(exec *e, uint32_t stepped, uint32_t max_ticks);
 
 /*
+ * exec_desk_step() in its parts around the tick's fast step, for the same
+ * ports, where exec_desk_step() would run next (with no exec_desk_ahead()
+ * steps before it, or after them):
+ *   if (exec_desk_tick_begin(e)) {     the work before the step (a latch)
+ *       drive_fast_step(&e->drive);    or the same computed elsewhere
+ *       exec_desk_tick_end(e);         the count, the event, the tasks
+ *   } else {
+ *       exec_desk_step(e);             a tick without a step, the vessel
+ *   }                                  plant, the averaged layer's frames
+ */
+bool exec_desk_tick_begin(exec *e);
+void exec_desk_tick_end(exec *e);
+
+/*
  * A command given between slow steps, as a scenario event at the slow
  * boundary just reached would have been: a co-simulation master's input
  * at a communication point (ports/fmu). Call it after the boundary's slow

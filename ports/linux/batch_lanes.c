@@ -43,38 +43,62 @@ bool batch_lane_ready(const drive_segment *d) { return d->plain && d->fast_now =
 
 #define BATCH_PASS_MAX 4096 /* executives per pass */
 
+/*
+ * What one run does in a pass: the work before its next tick's step (a
+ * latch; exec_desk_tick_begin()), the steps that only step (ahead: that
+ * tick's own, when its count has no event, and those after it), the next
+ * event tick's step (tick) and its event; the steps in lanes when the run
+ * is on the real-time path, else all of it through exec_desk_run().
+ */
+typedef struct {
+    uint32_t ahead; /* exec_desk_ahead()'s steps, after the begin */
+    bool tick;      /* the event tick's step follows them (in the same lanes) */
+    bool lane;      /* the steps go in lanes */
+    bool taken;     /* already in a group this pass */
+} batch_plan;
+
 void batch_step_all(exec *const *e, const uint32_t *most, size_t count) {
     static drive_segment *group[BATCH_PASS_MAX];
-    static uint32_t ahead[BATCH_PASS_MAX];
-    static bool lane[BATCH_PASS_MAX], taken[BATCH_PASS_MAX];
+    static batch_plan plan[BATCH_PASS_MAX];
     for (size_t i0 = 0u; i0 < count; i0 += BATCH_PASS_MAX) {
         const size_t m = (count - i0 < BATCH_PASS_MAX) ? count - i0 : BATCH_PASS_MAX;
         exec *const *x = e + i0;
         for (size_t i = 0; i < m; i++) {
-            ahead[i] = exec_desk_ahead(x[i], most[i0 + i]);
-            lane[i] = ahead[i] > 0u && x[i]->desk_run == NULL && batch_lane_ready(&x[i]->drive);
-            taken[i] = false;
+            batch_plan *p = &plan[i];
+            /* A latch may leave the real-time path (a fault, a trip): tested after it. */
+            p->lane = x[i]->desk_run == NULL && batch_lane_ready(&x[i]->drive) &&
+                      exec_desk_tick_begin(x[i]) && batch_lane_ready(&x[i]->drive);
+            p->ahead = p->lane ? exec_desk_ahead(x[i], most[i0 + i]) : 0u;
+            p->tick = p->lane && p->ahead < most[i0 + i];
+            p->taken = false;
         }
         for (size_t i = 0; i < m; i++) {
-            if (!lane[i] || taken[i]) {
+            if (!plan[i].lane || plan[i].taken) {
                 continue;
             }
+            const uint32_t steps = plan[i].ahead + (plan[i].tick ? 1u : 0u);
             const drive_modulator mod = x[i]->drive.cfg.modulator;
             size_t n = 0u;
             for (size_t j = i; j < m; j++) {
-                if (lane[j] && !taken[j] && ahead[j] == ahead[i] &&
+                const batch_plan *q = &plan[j];
+                if (q->lane && !q->taken && q->ahead + (q->tick ? 1u : 0u) == steps &&
                     x[j]->drive.cfg.modulator == mod) {
                     group[n++] = &x[j]->drive;
-                    taken[j] = true;
+                    plan[j].taken = true;
                 }
             }
-            batch_fast_run(group, n, ahead[i], mod == DRIVE_MODULATOR_SUBSTEP);
+            batch_fast_run(group, n, steps, mod == DRIVE_MODULATOR_SUBSTEP);
         }
         for (size_t i = 0; i < m; i++) {
-            if (lane[i]) {
-                (void)exec_desk_finish(x[i], ahead[i], most[i0 + i]);
-            } else {
+            const batch_plan *p = &plan[i];
+            if (!p->lane) {
+                /* Its tick begun or not (then nothing was done), exec_desk_run() goes on from there. */
                 (void)exec_desk_run(x[i], most[i0 + i]);
+                continue;
+            }
+            x[i]->fast_phase += p->ahead;
+            if (p->tick) {
+                exec_desk_tick_end(x[i]);
             }
         }
     }
