@@ -11,10 +11,10 @@
  * --name) writes DIR/NAME.csv (the telemetry, as --csv) and
  * DIR/NAME.json (the summary, as --summary); a line may add --trace FILE.
  * The runs advance together, one event tick of the executive at a time:
- * between two event ticks the runs on the real-time path step in lanes
- * (batch_fast_run()), any other run (averaged or event inverter, a fault
- * or trip that leaves the real-time path, a trace window, a different
- * frame, exact leaps) steps on its own as uuvsim would run it. The steps are the same
+ * the runs on the real-time path take their steps in lanes
+ * (batch_step_all(), batch_fast_run()), any other run (averaged or event
+ * inverter, a fault or trip that leaves the real-time path, exact leaps)
+ * steps on its own as uuvsim would run it. The steps are the same
  * bits either way, so each run's files are its single run's, byte for
  * byte, except the summary's wall_time_s and realtime_factor, which are
  * timing (the batch's wall time shared equally among its runs).

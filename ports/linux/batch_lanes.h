@@ -16,9 +16,9 @@
  * real-time step (pwm_rt.h's modulator, power_stage_fast.h's stage, the
  * motor's fast companion and the frame sums) once more, written on lanes,
  * the same operations in the same order, with the same roundings: a step
- * in two places. Suite batch_lanes (tests/host/test_batch_lanes.c, make
- * test) pins it to drive_fast_run() bit for bit, over frames of a running
- * drive of each modulator and both numeric builds, and uuvsim batch's test
+ * in two places. tests/host/test_batch_lanes.c (a make test row, both
+ * builds) pins it to drive_fast_run() bit for bit, over frames of running
+ * drives of each modulator, and uuvsim batch's test
  * compares whole runs with their single runs (tests/host/test_batch.sh).
  * A change to the step must be made in both, or those tests fail.
  */
