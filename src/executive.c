@@ -697,25 +697,25 @@ uint32_t exec_desk_finish(exec *e, uint32_t stepped, uint32_t max_ticks) {
  * the release's slow step ends the run, the frame's steps stop where they
  * stop in exec_desk_step()'s order, at the release.
  */
-static uint32_t desk_frame_hooked(exec *e) {
-    const uint32_t rel = e->fast_event_at;
-    e->fast_phase = rel;
-    if (fast_event(e) && exec_medium_tick(e)) {
+/* The event's tick's work after its step, if the run ended at the event, and a slow step. */
+static void desk_event_after(exec *e) {
+    if ((e->fast_phase == e->fast_event_at) && fast_event(e) && exec_medium_tick(e)) {
         exec_control_tick(e);
     }
     if (e->slow_pending) {
         exec_slow_step(e);
     }
+}
+
+static uint32_t desk_frame_hooked(exec *e) {
+    const uint32_t rel = e->fast_event_at;
+    e->fast_phase = rel;
+    desk_event_after(e);
     e->fast_phase = 0u;
     const uint32_t n = exec_fast_ended(e) ? rel : e->cfg.fast_per_medium;
     e->desk_run(e->desk_ctx, &e->drive, n);
     e->fast_phase = n;
-    if (e->fast_phase == e->fast_event_at && fast_event(e) && exec_medium_tick(e)) {
-        exec_control_tick(e);
-    }
-    if (e->slow_pending) {
-        exec_slow_step(e);
-    }
+    desk_event_after(e);
     return n;
 }
 
@@ -730,26 +730,23 @@ static uint32_t desk_frame_hooked(exec *e) {
  */
 static uint32_t desk_run_hooked(exec *e, uint32_t max_ticks) {
     const uint8_t gate = e->fast_gate;
-    if (max_ticks == 0u || e->cfg.plant != EXEC_PLANT_FULL ||
-        (gate != 0u && gate != EXEC_GATE_BEGIN) || e->slow_pending) {
-        return 0u;
-    }
-    if (gate == EXEC_GATE_BEGIN) {
-        e->fast_gate = 0u;
-        boundary_begin(e);
-        if (e->split && e->fast_phase == 0u && max_ticks >= e->cfg.fast_per_medium) {
-            return desk_frame_hooked(e);
+    uint32_t n = 0u;
+    if ((max_ticks != 0u) && (e->cfg.plant == EXEC_PLANT_FULL) &&
+        ((gate == 0u) || (gate == EXEC_GATE_BEGIN)) && !e->slow_pending) {
+        if (gate == EXEC_GATE_BEGIN) {
+            e->fast_gate = 0u;
+            boundary_begin(e);
         }
-    }
-    const uint32_t ahead = e->fast_event_at - e->fast_phase;
-    const uint32_t n = (ahead < max_ticks) ? ahead : max_ticks;
-    e->desk_run(e->desk_ctx, &e->drive, n);
-    e->fast_phase += n;
-    if (e->fast_phase == e->fast_event_at && fast_event(e) && exec_medium_tick(e)) {
-        exec_control_tick(e);
-    }
-    if (e->slow_pending) {
-        exec_slow_step(e);
+        if ((gate == EXEC_GATE_BEGIN) && e->split && (e->fast_phase == 0u) &&
+            (max_ticks >= e->cfg.fast_per_medium)) {
+            n = desk_frame_hooked(e);
+        } else {
+            const uint32_t ahead = e->fast_event_at - e->fast_phase;
+            n = (ahead < max_ticks) ? ahead : max_ticks;
+            e->desk_run(e->desk_ctx, &e->drive, n);
+            e->fast_phase += n;
+            desk_event_after(e);
+        }
     }
     return n;
 }
@@ -770,20 +767,20 @@ bool exec_desk_tick_begin(exec *e) {
 void exec_desk_tick_end(exec *e) { desk_after_tick(e, fast_tick_after(e)); }
 
 uint32_t exec_desk_run(exec *e, uint32_t max_ticks) {
+    uint32_t n;
     if (desk_averaged(e)) {
-        return desk_run_averaged(e, max_ticks);
-    }
-    if (e->desk_run != NULL) {
-        const uint32_t k = desk_run_hooked(e, max_ticks);
-        if (k > 0u) {
-            return k;
+        n = desk_run_averaged(e, max_ticks);
+    } else {
+        n = (e->desk_run != NULL) ? desk_run_hooked(e, max_ticks) : 0u;
+        if (n == 0u) {
+            const uint32_t k = exec_desk_ahead(e, max_ticks);
+            if (k > 0u) {
+                drive_fast_run(&e->drive, k);
+            }
+            n = exec_desk_finish(e, k, max_ticks);
         }
     }
-    const uint32_t n = exec_desk_ahead(e, max_ticks);
-    if (n > 0u) {
-        drive_fast_run(&e->drive, n);
-    }
-    return exec_desk_finish(e, n, max_ticks);
+    return n;
 }
 
 bool exec_report_take(exec *e, exec_frame *out) {
