@@ -699,12 +699,7 @@ uint32_t exec_desk_finish(exec *e, uint32_t stepped, uint32_t max_ticks) {
  */
 /* The event's tick's work after its step, if the run ended at the event, and a slow step. */
 static void desk_event_after(exec *e) {
-    if ((e->fast_phase == e->fast_event_at) && fast_event(e) && exec_medium_tick(e)) {
-        exec_control_tick(e);
-    }
-    if (e->slow_pending) {
-        exec_slow_step(e);
-    }
+    desk_after_tick(e, (e->fast_phase == e->fast_event_at) && fast_event(e));
 }
 
 static uint32_t desk_frame_hooked(exec *e) {
@@ -729,16 +724,10 @@ static uint32_t desk_frame_hooked(exec *e) {
  * without a step, the end).
  */
 static uint32_t desk_run_hooked(exec *e, uint32_t max_ticks) {
-    const uint8_t gate = e->fast_gate;
+    const bool begin = (e->fast_gate == EXEC_GATE_BEGIN);
     uint32_t n = 0u;
-    if ((max_ticks != 0u) && (e->cfg.plant == EXEC_PLANT_FULL) &&
-        ((gate == 0u) || (gate == EXEC_GATE_BEGIN)) && !e->slow_pending) {
-        if (gate == EXEC_GATE_BEGIN) {
-            e->fast_gate = 0u;
-            boundary_begin(e);
-        }
-        if ((gate == EXEC_GATE_BEGIN) && e->split && (e->fast_phase == 0u) &&
-            (max_ticks >= e->cfg.fast_per_medium)) {
+    if ((max_ticks != 0u) && !e->slow_pending && exec_desk_tick_begin(e)) {
+        if (begin && e->split && (e->fast_phase == 0u) && (max_ticks >= e->cfg.fast_per_medium)) {
             n = desk_frame_hooked(e);
         } else {
             const uint32_t ahead = e->fast_event_at - e->fast_phase;
