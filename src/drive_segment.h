@@ -49,6 +49,9 @@
 #ifndef UUV_DRIVE_SEGMENT_H
 #define UUV_DRIVE_SEGMENT_H
 
+/* [V] under-voltage trip of the DC link (the pack's cut-off is 432 V). */
+#define DRIVE_UV_TRIP_V 300.0
+
 #include <stdbool.h>
 #include <stddef.h>
 #include <stdint.h>
@@ -61,6 +64,13 @@
 #include "models/drive/pwm/pwm.h"
 #include "models/drive/pwm/pwm_rt.h"
 #include "uuv_config.h"
+
+/* The build's numeric adapter: its types and arithmetic (DRIVE_NUM, num_*). */
+#if UUV_NUMERIC == UUV_NUMERIC_FIXED
+#include "drive_num_q.h"
+#else
+#include "drive_num_f32.h"
+#endif
 
 /* Inverter model (the paper's layered model). */
 typedef enum {
@@ -138,8 +148,6 @@ typedef enum {
     DRIVE_TRIP_PHASE_LOSS     /* a motor phase carries no current while the others do */
 } drive_trip;
 
-/* [V] under-voltage trip of the DC link (the pack's cut-off is 432 V). */
-#define DRIVE_UV_TRIP_V 300.0
 
 /* What the drive reports to the slow segment, once per slow frame. */
 typedef struct {
@@ -208,12 +216,6 @@ static inline bool drive_options_built(drive_inverter inverter, coupling_down do
 typedef struct drive_segment drive_segment;
 typedef void drive_fast_kernel(drive_segment *d);
 
-/* The build's numeric adapter: its types and arithmetic (DRIVE_NUM, num_*). */
-#if UUV_NUMERIC == UUV_NUMERIC_FIXED
-#include "drive_num_q.h"
-#else
-#include "drive_num_f32.h"
-#endif
 
 /*
  * The fields below are in the build's units: the fixed build's per unit
