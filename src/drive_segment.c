@@ -7,6 +7,7 @@
  * once per slow frame, converts to SI in double.
  */
 #include "drive_segment.h"
+#include "drive_rt_step.h"
 
 #include <stddef.h>
 
@@ -108,30 +109,12 @@ static num_val fast_current_next(const drive_segment *d, num_val i, num_val dv) 
 }
 
 /*
- * Filter phase x of the real-time step, then at once the motor's fast
- * companion of that phase and its frame sum, so that little of the phase
- * stays alive in registers for the next.
- */
-static inline void fast_phase_plain(drive_segment *d, DRIVE_NUM(ps_fast) *f, int x) {
-    stage_t *ps = &d->ps;
-    DRIVE_NUM(ps_fast_phase)(ps, f, x, d->i_fast[x]);
-    const num_val v = ps->ph[x].v_c;
-    d->i_fast[x] = num_companion_rt(d->i_fast[x], v, d->e[x], d->NUM_RT_GAIN);
-    d->sums.v_cap[x] += v;
-}
-
-/* The real-time modulator's duties for the step (pwm_rt.h): sub-step or sampled. */
-static inline void rt_duties_plain(drive_segment *d, int32_t duty[3]) {
-    pwm_rt_duties(&d->rt, d->cfg.modulator == DRIVE_MODULATOR_SAMPLED, d->s, duty);
-}
-
-/*
  * The same with the dead time, when there is one (the general path's): the
  * leg currents at t_k decide which edges it delays.
  */
 static void rt_duties(drive_segment *d, int32_t duty[3]) {
     if (d->rt.kd == 0) {
-        rt_duties_plain(d, duty);
+        drive_rt_duties(d, duty);
     } else {
         const num_val ia = d->ps.ph[0].i_l;
         const num_val ib = d->ps.ph[1].i_l;
@@ -140,21 +123,9 @@ static void rt_duties(drive_segment *d, int32_t duty[3]) {
     }
 }
 
-/*
- * The real-time step (switching inverter, no dead time, mean or sampled
- * coupling, no faults): modulator, power stage, the motor's fast companion
- * and the frame sums, nothing else.
- */
+/* The real-time step (drive_rt_step.h) on the drive. */
 static inline void fast_tick_plain(drive_segment *d) {
-    stage_t *ps = &d->ps;
-    DRIVE_NUM(ps_fast) f;
-    int32_t duty[3];
-    rt_duties_plain(d, duty);
-    DRIVE_NUM(ps_fast_begin)(ps, duty, &f);
-    fast_phase_plain(d, &f, 0);
-    fast_phase_plain(d, &f, 1);
-    DRIVE_NUM(ps_fast_end)(ps, &d->in.battery, &f);
-    d->sums.v_dc += ps->v_dc;
+    drive_rt_step(d);
 }
 
 /* What the faults and a trip leave of each leg (leg_fault.h), by the filter currents. */
