@@ -63,6 +63,10 @@ drive_status drive_init(drive_segment *d, const drive_config *cfg, const propell
                                         cfg->v_dc0_v) != PS_OK) {
             return DRIVE_ERR_MODEL;
         }
+        /* The sub-step modulator without dead time plans each frame (pwm_rt.h). */
+        pwm_rt_frames(&d->rt, (cfg->modulator == DRIVE_MODULATOR_SUBSTEP && cfg->dead_time_ns == 0u)
+                                  ? cfg->fast_per_medium : 0u);
+        pwm_rt_prepare(&d->rt, &d->out.ramp); /* the first latch's */
         d->mod = &d->pwm;
         d->stage = &d->ps;
     }
@@ -86,7 +90,7 @@ drive_status drive_init(drive_segment *d, const drive_config *cfg, const propell
                (cfg->dead_time_ns == 0u) &&
                (cfg->down == COUPLE_ZOH || cfg->down == COUPLE_STAGGER) &&
                (cfg->up != COUPLE_FILTER) && !cfg->energy_audit;
-    d->kernel_ok = (cfg->modulator == DRIVE_MODULATOR_SAMPLED);
+    d->kernel_ok = (cfg->modulator == DRIVE_MODULATOR_SUBSTEP);
     d->plain = d->plain_ok;
     d->staggered = drive_staggered(cfg->down, cfg->fast_per_medium);
     d->corr_pending = num_corr_pending(d->staggered, cfg->fast_per_medium);
@@ -109,12 +113,13 @@ static num_val fast_current_next(const drive_segment *d, num_val i, num_val dv) 
 }
 
 /*
- * The same with the dead time, when there is one (the general path's): the
- * leg currents at t_k decide which edges it delays.
+ * The general path's: each step computed on its own (faults may force the
+ * states), with the dead time when there is one (the leg currents at t_k
+ * decide which edges it delays).
  */
 static void rt_duties(drive_segment *d, int32_t duty[3]) {
     if (d->rt.kd == 0) {
-        drive_rt_duties(d, duty);
+        pwm_rt_duties_each(&d->rt, d->cfg.modulator == DRIVE_MODULATOR_SAMPLED, d->s, duty);
     } else {
         const num_val ia = d->ps.ph[0].i_l;
         const num_val ib = d->ps.ph[1].i_l;
@@ -223,6 +228,9 @@ void drive_fast_tick(drive_segment *d) {
 
 /* The real-time path on or off, and the step drive_fast_step() calls with it. */
 static void plain_set(drive_segment *d, bool plain) {
+    if (plain && !d->plain) {
+        pwm_rt_states(&d->rt, d->s); /* the plan holds the states from here (pwm_rt.h) */
+    }
     d->plain = plain;
     d->fast_now = (plain && d->kernel_ok) ? d->kernel : NULL;
 }
@@ -504,6 +512,7 @@ void drive_medium_task(drive_segment *d, bool control_due, bool slow_boundary) {
     /* The next frame's references: exact at both ends, the chord between. */
     if (d->cfg.inverter == DRIVE_INVERTER_SWITCHING) {
         DRIVE_NUM(pwm_rt_ramp)(&d->out.ramp, d->cmd.m, d->ref_ph, d->cmd.phase_inc, n);
+        pwm_rt_prepare(&d->rt, &d->out.ramp);
         d->ref_ph += d->cmd.phase_inc * n;
     }
     num_count_sat(&d->ps_clamps, sat);

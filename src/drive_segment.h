@@ -342,10 +342,11 @@ void drive_fast_run(drive_segment *d, uint32_t n);
  * Hands the real-time step to a port's kernel, or back to the C when
  * kernel is NULL: the drive's "plain" path (switching inverter, no dead
  * time, held EMF, the mean or sampled coupling, no faults) with the
- * sampled modulator, the step such a kernel computes. The kernel must compute what drive_fast_tick() computes there,
- * bit for bit (ports/cortexm's for ARMv7-M is tested against it); every
- * other path, the sub-step modulator's included, stays the C's. Call it
- * after drive_init().
+ * sub-step modulator by its frame plans (pwm_rt.h), the step such a
+ * kernel computes. The kernel must compute what drive_fast_tick()
+ * computes there, bit for bit (ports/cortexm's for ARMv7-M is tested
+ * against it); every other path, the sampled modulator's included, stays
+ * the C's. Call it after drive_init().
  */
 void drive_use_fast_kernel(drive_segment *d, drive_fast_kernel *kernel);
 

@@ -356,7 +356,7 @@ static inline bool fast_tick_after(exec *e) {
     return fast_event(e);
 }
 
-bool exec_fast_tick(exec *e) {
+bool exec_fast_tick_event(exec *e) {
     uint8_t gate = e->fast_gate;
     if (gate != 0u) {
         /* Work before the step: the boundary's second half, or no step at all. */

@@ -241,12 +241,26 @@ exec_status exec_init(exec *e, const exec_config *cfg, const scenario *scn);
 bool exec_check_scenario(const exec_config *cfg, const scenario *scn, scenario_error *err);
 
 /*
+ * The fast tick's work besides a plain step: a boundary's half, a release,
+ * the staggered latch, the run's end (exec_fast_tick() calls it).
+ */
+bool exec_fast_tick_event(exec *e);
+
+/*
  * The fast tick; true when it released the medium task. Once the run's
  * last fast step and the release after it have run (exec_fast_ended(),
  * true right after that release) it does nothing: a port stops its timer
- * then.
+ * then. Inline, so that a tick with nothing but its step makes no call
+ * besides the step's.
  */
-bool exec_fast_tick(exec *e);
+static inline bool exec_fast_tick(exec *e) {
+    if (e->fast_gate == 0u && e->fast_phase + 1u != e->fast_event_at) {
+        drive_fast_step(&e->drive);
+        e->fast_phase++;
+        return false;
+    }
+    return exec_fast_tick_event(e);
+}
 
 /* Work a fast tick does before its step (exec.fast_gate). */
 #define EXEC_GATE_STOP 1u  /* no more fast steps: the run ended or stopped */

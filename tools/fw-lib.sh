@@ -63,7 +63,7 @@ fw_stack_static() { # IMAGE OUTDIR MACHINE
     # shellcheck disable=SC2046 # one .su file per object
     "$ARM_OBJDUMP" -d --no-show-raw-insn "$1" |
         "$FW_STACK" --frame "$(fw_frame_bytes "$3")" --call SysTick_Handler=fw_fast \
-            --call exec_fast_tick=$kernel \
+            --call fw_fast=$kernel --call exec_fast_tick_event=$kernel \
             --call PendSV_Handler=fw_medium Reset_Handler PendSV_Handler SysTick_Handler \
             HardFault_Handler -- $(find "$objdir" -name '*.su' | sort) >"$2/stack.txt"
     rc=$?

@@ -7,8 +7,9 @@
 #
 # Regions: fast (SysTick_Handler), medium (PendSV_Handler: the motor
 # task), control (Irq_Handler: the controller task), background
-# (fw_background_step), and, inside them, drive_fast (drive_fast_tick),
-# drive_fast_kernel (the port's kernel, where the image has one) and
+# (fw_background_step), and, inside them, drive_fast (the port's kernel
+# drive_fast_kernel_v7m where the image has one, with the C's
+# drive_fast_tick beside it as drive_fast_c; else drive_fast_tick) and
 # controller (the controller's step), and any function named in the
 # environment variable FW_PROFILE (space-separated). A region is
 # usable when every return of the function is an unconditional return
@@ -90,11 +91,15 @@ region fast isr SysTick_Handler required
 region medium isr PendSV_Handler required
 region background call fw_background_step required
 region control isr Irq_Handler required
-# The drive's fast step: the C (drive_fast_tick, every modulator), and the
-# port's kernel where the image has one (the sampled modulator's step).
-region drive_fast call drive_fast_tick
+# The drive's fast step: the port's kernel where the image has one (the
+# sub-step modulator's step by its frame plan), else the C (drive_fast_tick,
+# every modulator); beside the kernel, the C's own count (the steps the
+# kernel hands to it) as drive_fast_c.
 if [ -n "$(sym drive_fast_kernel_v7m)" ]; then
-    region drive_fast_kernel call drive_fast_kernel_v7m
+    region drive_fast call drive_fast_kernel_v7m
+    region drive_fast_c call drive_fast_tick
+else
+    region drive_fast call drive_fast_tick
 fi
 region controller call "$control"
 # More functions to measure, by name (a profile of a task): FW_PROFILE="f g".

@@ -14,10 +14,16 @@
 
 void fast_kernel_offsets(void);
 void fast_kernel_offsets(void) {
-    OFFSET(D_RT_PH, offsetof(drive_segment, rt.ph_c));
-    OFFSET(D_RT_INC, offsetof(drive_segment, rt.inc_c));
-    OFFSET(D_RT_R, offsetof(drive_segment, rt.r));
-    OFFSET(D_RT_DR, offsetof(drive_segment, rt.dr));
+    OFFSET(D_RT_K, offsetof(drive_segment, rt.k));
+    OFFSET(D_RT_NEXT_AT, offsetof(drive_segment, rt.next_at));
+    OFFSET(D_RT_NEXT, offsetof(drive_segment, rt.next));
+    OFFSET(D_RT_EV, offsetof(drive_segment, rt.ev));
+    OFFSET(EV_AT, offsetof(pwm_rt_event, at));
+    OFFSET(EV_S, offsetof(pwm_rt_event, s));
+    OFFSET(EV_KIND, offsetof(pwm_rt_event, kind));
+    OFFSET(EV_DUTY, offsetof(pwm_rt_event, duty));
+    OFFSET(EV_SIZE, sizeof(pwm_rt_event));
+    OFFSET(EV_PER_STEP, PWM_RT_PER_STEP);
     OFFSET(D_S, offsetof(drive_segment, s));
     OFFSET(D_PS_K, offsetof(drive_segment, ps.k));
     OFFSET(D_PS_PH, offsetof(drive_segment, ps.ph));

@@ -1,41 +1,54 @@
 /*
  * The fixed build's real-time fast tick in Thumb-2 (ARMv7-M; linked into
- * the Cortex-M4 and M7 images): fast_tick_plain() of
- * src/drive_segment_fixed.c, the same integer operations in the same
- * order, so the same bits. The C stays the reference: the desk simulator
- * runs it, tests/unit/test_fast_kernel.c runs both side by side on the
- * target (from random states, some at the clamp edge, so the clamps act), and
- * make test compares the firmware's telemetry with the desk's byte for
- * byte. What the kernel saves is the compiler's register spills and moves
+ * the Cortex-M4 and M7 images): fast_tick_plain() of the drive segment
+ * with the sub-step modulator's frame plan (pwm_rt.h), the same integer
+ * operations in the same order, so the same bits. The C stays the
+ * reference: the desk simulator runs it, tests/unit/test_fast_kernel.c
+ * runs both side by side on the target (from random states, some at the
+ * clamp edge, so the clamps act, and with edges in the steps), and make
+ * test compares the firmware's telemetry with the desk's byte for byte.
+ * What the kernel saves is the compiler's register spills and moves
  * around the two filter phases (docs/firmware.md section 9).
  *
  *   void drive_fast_kernel_v7m(drive_segment *d);
  *
  * One step (see src/models/drive/pwm/pwm_rt.h, power_stage_fast.h and
  * power_stage_nodes.h for the arithmetic and its bounds):
- *   - modulator: carrier c, legs s_x = sign bit of c - r_x (r_c = -r_a - r_b);
- *   - inverter: v3 = hi(v_dc 0x55555555 + 2^31), u_x = n_x v3;
+ *   - modulator: the frame's step count k against its next event. Outside
+ *     the events the legs keep their states s_x (held), as whole-step
+ *     duties; an event step takes its states and, when one is a share of
+ *     the step, its duties d_x (Q15); a PWM_RT_PER_STEP event hands the
+ *     whole step to the C, which computes it on its own;
+ *   - inverter: v3 = hi(v_dc 0x55555555 + 2^31); held: u_x = n_x v3 with
+ *     n_a = 2 s_a - s_b - s_c; with duties: u_x = hi(8 v3 w_x 2^14 + 2^31)
+ *     with w_a = 2 d_a - d_b - d_c (ps_inverter_q());
  *   - per filter phase x: the companion j_L, the node's dv, the states
  *     i_L, i_d, v, clamped to +-1 per unit and counted, j_sh from the
- *     clamped states, T += dd_x (i_L(k) + i_L(k+1)); then the motor's
+ *     clamped states, T += dd_x (i_L(k) + i_L(k+1)) with dd_x = s_x - s_c
+ *     (held, 32 bits) or d_x - d_c (duties, 64 bits); then the motor's
  *     fast current and the frame sum of v;
- *   - DC link: i_dc = floor((T + 1) / 2), v_dc by forward Euler, clamped;
- *     the frame sum of v_dc.
+ *   - DC link: i_dc = floor((T + 1) / 2) (held: the duties' 2^15 scale
+ *     divided out) or floor((T + 2^15) / 2^16), v_dc by forward Euler,
+ *     clamped; the frame sum of v_dc.
  * Every rounded product sum is SMLAL on a 64-bit accumulator that starts
  * as base 2^32 + 2^31: its high word is base + round(sum / 2^32).
  *
  * The offsets come from fast_kernel_offsets.h, generated from the C
  * declarations (fast_kernel_offsets.c). The paired loads and stores
- * (LDRD, STRD) also need some fields next to each other; the checks below
- * stop the build if a declaration moves them apart.
+ * (LDRD, STRD) also need some fields next to each other, and the events
+ * are indexed by a shift; the checks below stop the build if a
+ * declaration breaks that.
  */
 #include "fast_kernel_offsets.h"
 
-#if D_RT_INC != D_RT_PH + 4 || PH_V_C != PH_I_L + 4 || PH_J_SH != PH_I_D + 4
-#error "fast_kernel_v7m.S: the carrier's phase and increment, or a filter phase's states, are not adjacent"
+#if D_RT_NEXT_AT != D_RT_K + 4 || PH_V_C != PH_I_L + 4 || PH_J_SH != PH_I_D + 4
+#error "fast_kernel_v7m.S: the step count and the next event, or a filter phase's states, are not adjacent"
 #endif
 #if K_G_L2 != K_NEG_EPS_L + 4 || K_G_D != K_NEG_G_L + 4 || D_BAT_KG != D_BAT_E + 4
 #error "fast_kernel_v7m.S: a pair of coefficients loaded together is not adjacent"
+#endif
+#if EV_SIZE != 16
+#error "fast_kernel_v7m.S: an event of the modulator's plan is not 16 bytes"
 #endif
 
     .syntax unified
@@ -66,11 +79,12 @@
 
 /*
  * Filter phase X (0 or 1) with the inverter voltage in U and the leg
- * difference in DD; FIRST: T = DD S (phase a) else T += DD S (in r4).
+ * difference in DD; FIRST: T = DD S (phase a) else T += DD S, in r4 (WIDE
+ * 0) or r1:r4 (WIDE 1, r1 the high word).
  * Registers: r0 d; r3 i_m; r6 i_L(k); r7 v; r8 i_d; r9 j_sh; lr j_L then
  * i_L(k+1); r10, r11 coefficients; r12 the accumulator's low word.
  */
-    .macro PHASE x, u, dd, first
+    .macro PHASE x, u, dd, first, wide
     ldrd    r6, r7, [r0, #(D_PS_PH + \x * PH_SIZE + PH_I_L)]
     ldrd    r8, r9, [r0, #(D_PS_PH + \x * PH_SIZE + PH_I_D)]
     ldrd    r10, r11, [r0, #(D_PS_K + K_NEG_EPS_L)]
@@ -121,10 +135,18 @@
     strd    r8, r9, [r0, #(D_PS_PH + \x * PH_SIZE + PH_I_D)]
     /* T: the DC-link current's sum */
     adds    r6, r6, lr
+    .if \wide
+    .if \first
+    smull   r4, r1, \dd, r6
+    .else
+    smlal   r4, r1, \dd, r6
+    .endif
+    .else
     .if \first
     mul     r4, \dd, r6
     .else
     mla     r4, \dd, r6, r4
+    .endif
     .endif
     /* The motor's fast current: i_m = hi((i_m 2^32 + 2^31) + (v - e) k32) */
     ldr     r10, [r0, #(D_E + 4 * \x)]
@@ -140,42 +162,32 @@
     strd    r10, r11, [r0, #(D_SUM_VCAP + 8 * \x)]
     .endm
 
-    .global drive_fast_kernel_v7m
-    .type   drive_fast_kernel_v7m, %function
-    .thumb_func
-drive_fast_kernel_v7m:
-    push    {r4-r11, lr}
-    /* Modulator: the carrier at ph (folded about its peak), ph += inc. */
-    ldrd    r2, r3, [r0, #D_RT_PH]
-    adds    r3, r2, r3
-    str     r3, [r0, #D_RT_PH]
-    lsrs    r1, r2, #7
-    cmp     r2, #0
-    it      lt
-    rsblt   r1, r1, #0x2000000
-    sub     r1, r1, #0x800000
-    /* References r_a, r_b at t_k; they advance by their slopes. */
-    ldrd    r2, r3, [r0, #D_RT_R]
-    ldrd    r4, r5, [r0, #D_RT_DR]
-    adds    r4, r2, r4
-    adds    r5, r3, r5
-    strd    r4, r5, [r0, #D_RT_R]
-    /* Legs: s_a (r4), s_b (r5), s_c (r6). */
-    subs    r4, r1, r2
-    lsrs    r4, r4, #31
-    subs    r5, r1, r3
-    lsrs    r5, r5, #31
-    adds    r6, r1, r2
-    adds    r6, r6, r3
-    lsrs    r6, r6, #31
-    strd    r4, r5, [r0, #D_S]
-    str     r6, [r0, #(D_S + 8)]
-    /* Inverter: v3 = hi(v_dc 0x55555555 + 2^31) (r3); u_a (r1), u_b (r2). */
+/* v3 = hi(v_dc 0x55555555 + 2^31) in r3 (r1, r2, r7 scratch). */
+    .macro THIRD
     ldr     r7, [r0, #D_PS_VDC]
     ldr     r1, =0x55555555
     mov     r2, #HALF
     movs    r3, #0
     smlal   r2, r3, r7, r1
+    .endm
+
+    .global drive_fast_kernel_v7m
+    .type   drive_fast_kernel_v7m, %function
+    .thumb_func
+drive_fast_kernel_v7m:
+    push    {r4-r11, lr}
+    /* Modulator: step k of the frame, its next event at next_at. */
+    ldrd    r1, r2, [r0, #D_RT_K]
+    cmp     r1, r2
+    beq     .Levent
+    adds    r1, r1, #1
+    str     r1, [r0, #D_RT_K]
+    /* Held legs: s_a (r4), s_b (r5), s_c (r6). */
+    ldrd    r4, r5, [r0, #D_S]
+    ldr     r6, [r0, #(D_S + 8)]
+.Lheld:
+    /* Inverter: v3 (r3); u_a = n_a v3 (r1), u_b = n_b v3 (r2). */
+    THIRD
     rsb     r1, r5, r4, lsl #1
     subs    r1, r1, r6
     rsb     r2, r4, r5, lsl #1
@@ -186,11 +198,12 @@ drive_fast_kernel_v7m:
     /* dd_a = s_a - s_c (r4), dd_b = s_b - s_c (r5) */
     subs    r4, r4, r6
     subs    r5, r5, r6
-    PHASE   0, r1, r4, 1
-    PHASE   1, r2, r5, 0
+    PHASE   0, r1, r4, 1, 0
+    PHASE   1, r2, r5, 0, 0
     /* DC-link current i_dc = floor((T + 1) / 2) */
     adds    r4, r4, #1
     asrs    r4, r4, #1
+.Ldclink:
     str     r4, [r0, #D_PS_IDC]
     /* v_dc = hi((v_dc 2^32 + 2^31) + (e - v_dc) kg + i_dc neg_k_c), clamped */
     ldr     r6, [r0, #D_PS_VDC]
@@ -206,6 +219,67 @@ drive_fast_kernel_v7m:
     adds    r7, r7, r6
     adc     r8, r8, r6, asr #31
     strd    r7, r8, [r0, #D_SUM_VDC]
+    pop     {r4-r11, pc}
+
+    /* An event step: ev[next] (r8), its kind (r9). */
+.Levent:
+    ldr     r4, [r0, #D_RT_NEXT]
+    add     r8, r0, r4, lsl #4
+    ldrb    r9, [r8, #(D_RT_EV + EV_KIND)]
+    cmp     r9, #EV_PER_STEP
+    beq     .Lper_step
+    adds    r1, r1, #1
+    str     r1, [r0, #D_RT_K]
+    adds    r4, r4, #1
+    str     r4, [r0, #D_RT_NEXT]
+    ldrh    r7, [r8, #(D_RT_EV + EV_SIZE + EV_AT)]
+    str     r7, [r0, #D_RT_NEXT_AT]
+    /* Its states, the legs' from here on. */
+    ldrb    r7, [r8, #(D_RT_EV + EV_S)]
+    and     r4, r7, #1
+    ubfx    r5, r7, #1, #1
+    ubfx    r6, r7, #2, #1
+    strd    r4, r5, [r0, #D_S]
+    str     r6, [r0, #(D_S + 8)]
+    cmp     r9, #0
+    beq     .Lheld
+    /* Duties d_a (r4), d_b (r5), d_c (r6), Q15. */
+    ldr     r4, [r8, #(D_RT_EV + EV_DUTY)]
+    ldr     r5, [r8, #(D_RT_EV + EV_DUTY + 4)]
+    ldr     r6, [r8, #(D_RT_EV + EV_DUTY + 8)]
+    /* Inverter: 8 v3 (r3); u_x = hi(8 v3 w_x 2^14 + 2^31) (r1, r2). */
+    THIRD
+    lsls    r3, r3, #3
+    rsb     r1, r5, r4, lsl #1
+    subs    r1, r1, r6
+    lsls    r1, r1, #14
+    rsb     r2, r4, r5, lsl #1
+    subs    r2, r2, r6
+    lsls    r2, r2, #14
+    mov     r7, #HALF
+    movs    r9, #0
+    smlal   r7, r9, r3, r1
+    mov     r7, #HALF
+    movs    r10, #0
+    smlal   r7, r10, r3, r2
+    mov     r1, r9
+    mov     r2, r10
+    strd    r1, r2, [r0, #D_PS_U]
+    /* dd_a = d_a - d_c (r4), dd_b = d_b - d_c (r5), Q15 units */
+    subs    r4, r4, r6
+    subs    r5, r5, r6
+    PHASE   0, r1, r4, 1, 1
+    PHASE   1, r2, r5, 0, 1
+    /* DC-link current i_dc = floor((T + 2^15) / 2^16) */
+    adds    r4, r4, #0x8000
+    adc     r1, r1, #0
+    lsrs    r4, r4, #16
+    orr     r4, r4, r1, lsl #16
+    b       .Ldclink
+
+    /* A step the plan hands to the C (pwm_rt_event_take() computes it on its own). */
+.Lper_step:
+    bl      drive_fast_tick
     pop     {r4-r11, pc}
     .ltorg
     .size   drive_fast_kernel_v7m, . - drive_fast_kernel_v7m

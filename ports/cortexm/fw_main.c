@@ -90,12 +90,12 @@ enum { FW_RATE_FAST, FW_RATE_MEDIUM, FW_RATE_SLOW, FW_RATES };
 static const uint32_t fw_spin_count[FW_RATES] = {2000u, 100000u, 20000000u};
 static bool fw_spin_armed[FW_RATES];
 
-/* overrun=slowed: every fast tick some 200 instructions longer, not only the first. */
+/* overrun=slowed: every fast tick some 350 instructions longer, not only the first. */
 static bool fw_slowed;
 
 static void fw_spin_once(int rate) {
     if (rate == FW_RATE_FAST && fw_slowed) {
-        for (volatile uint32_t i = 0; i < 40u; i = i + 1u) {
+        for (volatile uint32_t i = 0; i < 70u; i = i + 1u) {
         }
     }
     if (fw_spin_armed[rate]) {

@@ -441,7 +441,7 @@ static double van_error_pct(uint32_t step_ns, bool substep, double m) {
         }
         int32_t s[3], duty[3];
         if (substep) {
-            pwm_rt_substep(&rt, s, duty);
+            pwm_rt_substep_each(&rt, s, duty);
         } else {
             pwm_rt_sampled(&rt, s, duty);
         }

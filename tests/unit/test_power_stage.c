@@ -911,7 +911,7 @@ static void test_setup_and_outputs(void) {
 static void rt_duties(pwm_rt *rt, int substep, int32_t duty[3]) {
     int32_t st[3];
     if (substep) {
-        pwm_rt_substep(rt, st, duty);
+        pwm_rt_substep_each(rt, st, duty);
     } else {
         pwm_rt_sampled(rt, st, duty);
     }

@@ -428,7 +428,7 @@ static void test_rt_against_exact(int fixed) {
         /* The reference of leg a now against m sin at this step's phase. */
         double exact = m * math_sin_f64(MATH_TWO_PI_F64 * (double)(ref_ph + (k % n) * inc) /
                                         4294967296.0);
-        double dev = (double)rt.r[0] / PWM_RT_ONE - exact;
+        double dev = (double)pwm_rt_ref(&rt.fr[rt.cur], 0, rt.k) / PWM_RT_ONE - exact;
         chord_worst = (dev < 0 ? -dev : dev) > chord_worst ? (dev < 0 ? -dev : dev) : chord_worst;
         int32_t st[3];
         pwm_rt_step(&rt, st);
@@ -492,7 +492,7 @@ static double rt_period(int fixed, int substep, double m, const int32_t *neg,
         } else if (neg != NULL) {
             pwm_rt_substep_dt(&rt, neg, st, duty);
         } else {
-            pwm_rt_substep(&rt, st, duty);
+            pwm_rt_substep_each(&rt, st, duty);
         }
         for (unsigned x = 0u; x < 3u; x++) {
             sum[x] += duty[x];
@@ -619,6 +619,84 @@ static void test_rt_setup(void) {
     UT_NEAR((double)r.dr[0] * 3.0 / PWM_RT_ONE, -1.0, 1e-4);
 }
 
+
+/*
+ * The frame plans (pwm_rt.h) against every step computed on its own:
+ * frames of n steps with random ramps (references up to the carrier's
+ * peak, slopes up to beyond the carrier's, which cannot be planned), the
+ * carrier from random phases, n from 1 to 400 (frames of several carrier
+ * periods hand over to single steps), frames started by prepare and apply
+ * or by apply alone, and frames run one step short or long of n; duties
+ * and states compared after every step.
+ */
+static uint32_t rt_rng = 0x9E3779B9u;
+
+static uint32_t rt_next(void) {
+    rt_rng ^= rt_rng << 13;
+    rt_rng ^= rt_rng >> 17;
+    rt_rng ^= rt_rng << 5;
+    return rt_rng;
+}
+
+static int32_t rt_within(int32_t lim) {
+    return (int32_t)(rt_next() % (2u * (uint32_t)lim + 1u)) - lim;
+}
+
+static void test_rt_plan(void) {
+    static const uint32_t ns[] = {1u, 7u, 25u, 50u, 51u, 99u, 100u, 400u};
+    const pwm_params pp = pwm_params_sampled;
+    uint32_t bad = 0u, steps = 0u, edges = 0u, per_step = 0u, planned = 0u, trials = 0u;
+    for (uint32_t t = 0u; t < 400u; t++) {
+        pwm_rt a, b;
+        const uint32_t n = ns[t % 8u];
+        UT_CHECK(pwm_rt_init(&a, &pp, STEP_NS) == PWM_OK);
+        a.fr[0].ph0 = rt_next();
+        a.fr[0].r0[0] = rt_within(PWM_RT_ONE / 2);
+        a.fr[0].r0[1] = rt_within(PWM_RT_ONE / 2);
+        b = a;
+        pwm_rt_frames(&a, n);
+        int32_t sa[3] = {0, 0, 0}, sb[3] = {0, 0, 0};
+        for (uint32_t f = 0u; f < 12u; f++) {
+            pwm_rt_ramp r;
+            const int32_t big = ((t & 3u) == 1u) ? PWM_RT_ONE : PWM_RT_ONE / 2;
+            const int32_t slope = ((f % 5u) == 4u) ? 400000 : 12000;
+            r.r0[0] = rt_within(big);
+            r.r0[1] = rt_within(big);
+            r.dr[0] = rt_within(slope);
+            r.dr[1] = rt_within(slope);
+            /* Frame lengths of n, or one off (the plan prepared for n is then replanned). */
+            const uint32_t len = ((f % 7u) == 6u) ? n + 1u : (((f % 11u) == 10u) ? n - 1u : n);
+            if (f > 0u) {
+                /* Every other frame prepared first (used when the last ran n steps). */
+                if ((f & 1u) == 0u) {
+                    pwm_rt_prepare(&a, &r);
+                }
+                pwm_rt_apply(&a, &r);
+                pwm_rt_apply(&b, &r);
+            }
+            for (uint32_t k = 0u; k < len; k++) {
+                int32_t da[3], db[3];
+                const bool ev = a.k == a.next_at;
+                per_step += (ev && a.ev[a.next].kind == (uint8_t)PWM_RT_PER_STEP) ? 1u : 0u;
+                planned += (ev && a.ev[a.next].kind == 1u) ? 1u : 0u;
+                pwm_rt_substep(&a, sa, da);
+                pwm_rt_substep_each(&b, sb, db);
+                steps++;
+                for (int x = 0; x < 3; x++) {
+                    bad += (da[x] != db[x] || sa[x] != sb[x]) ? 1u : 0u;
+                    edges += (db[x] != 0 && db[x] != PWM_RT_DUTY_ONE) ? 1u : 0u;
+                }
+            }
+        }
+        trials++;
+    }
+    ut_info("%u runs of 12 frames, %u steps, %u leg edges, %u planned edge steps, %u steps "
+            "handed over to single steps, %u differing", (unsigned)trials, (unsigned)steps,
+            (unsigned)edges, (unsigned)planned, (unsigned)per_step, (unsigned)bad);
+    UT_EQ_INT(bad, 0);
+    UT_CHECK(planned > 5000u && per_step > 1000u && per_step < steps);
+}
+
 void suite_pwm(void) {
     int fixed;
     UT_TEST("pwm: each leg switches on and off once per 5 kHz carrier period (100 periods)");
@@ -664,6 +742,9 @@ void suite_pwm(void) {
     for (fixed = 1; fixed >= 0; fixed--) {
         test_rt_substep_fundamental(fixed);
     }
+    UT_TEST("pwm_rt: frame plans give every step's duties and states bit for bit (random ramps, "
+            "phases, frame lengths 1 to 400)");
+    test_rt_plan();
     UT_TEST("pwm_rt: dead time, the mean duty off by -sign(i) t_d f_c per leg (the classic "
             "V_dc t_d f_sw sign(i)), within 1 %; set-up checks");
     for (fixed = 1; fixed >= 0; fixed--) {

@@ -27,8 +27,284 @@ pwm_status pwm_rt_init(pwm_rt *p, const pwm_params *pp, uint32_t step_ns) {
     while (sh < 16u && ((check.inc_c >> 7) + (check.inc_c >> 12)) >> sh > 0xffffu) {
         sh++;
     }
-    *p = (pwm_rt){check.ph_c, check.inc_c, {0, 0}, {0, 0}, 0, sh};
+    *p = (pwm_rt){0};
+    p->inc_c = check.inc_c;
+    p->den_sh = sh;
+    p->fr[0].ph0 = check.ph_c;
+    p->ev[0].kind = (uint8_t)PWM_RT_PER_STEP;
+    p->ev[PWM_RT_EVENTS + 1u].kind = (uint8_t)PWM_RT_PER_STEP;
     return PWM_OK;
+}
+
+/* ---- Plans (pwm_rt.h) ---------------------------------------------------- */
+
+/* A frame's legs for its plan: the carrier's start and step, each leg's reference and slope. */
+typedef struct {
+    uint32_t ph0;
+    uint32_t inc;
+    int32_t r0[3];
+    int32_t dr[3];
+} rt_legs;
+
+/* Leg x's comparison at step j: pwm_rt_e_at()'s, for one leg (the same sums modulo 2^32). */
+static inline int32_t e_leg(const rt_legs *g, uint32_t j, uint32_t x) {
+    const int32_t c = pwm_rt_carrier(g->ph0 + j * g->inc);
+    return (int32_t)((uint32_t)g->r0[x] + j * (uint32_t)g->dr[x]) - c;
+}
+
+/* The three legs' comparisons at step j. */
+static inline void e_legs(const rt_legs *g, uint32_t j, int32_t e[3]) {
+    const int32_t c = pwm_rt_carrier(g->ph0 + j * g->inc);
+    for (uint32_t x = 0u; x < 3u; x++) {
+        e[x] = (int32_t)((uint32_t)g->r0[x] + j * (uint32_t)g->dr[x]) - c;
+    }
+}
+
+/*
+ * The step t in [a, b) at whose ends leg x's comparison e changes sign,
+ * given that it does between a and b within one half of the carrier
+ * (rising or not), where e is monotone: from e_a and the change per step
+ * (the carrier's inc / 2^7 less the reference's slope, on the rising half;
+ * plus it, on the falling one) the estimate, then the steps checked and
+ * moved until e_t and e_t+1 (returned in e) differ in sign.
+ */
+static uint32_t edge_find(const rt_legs *g, uint32_t x, uint32_t a, uint32_t b, bool rising,
+                          int32_t e_a, int32_t e[2]) {
+    const bool pos = e_a > 0;
+    const int32_t carrier = (int32_t)(g->inc >> 7);
+    const uint32_t step = (uint32_t)(rising ? carrier - g->dr[x] : carrier + g->dr[x]);
+    const uint32_t gap = pos ? (uint32_t)e_a - 1u : 0u - (uint32_t)e_a;
+    uint32_t t = a + gap / step;
+    t = (t < b) ? t : b - 1u;
+    e[0] = e_leg(g, t, x);
+    while (t > a && (e[0] > 0) != pos) {
+        t--;
+        e[0] = e_leg(g, t, x);
+    }
+    e[1] = e_leg(g, t + 1u, x);
+    while ((e[1] > 0) == pos) {
+        t++;
+        e[0] = e[1];
+        e[1] = e_leg(g, t + 1u, x);
+    }
+    return t;
+}
+
+/* The sign bits (e > 0) of the three legs (|e| < 2^31). */
+static uint32_t state_bits(const int32_t e[3]) {
+    return ((uint32_t)-e[0] >> 31) | (((uint32_t)-e[1] >> 31) << 1) | (((uint32_t)-e[2] >> 31) << 2);
+}
+
+/* The events of a plan being written. */
+typedef struct {
+    pwm_rt_event *ev;
+    uint32_t n;      /* written */
+    uint32_t held;   /* the legs' states after the last */
+    bool need0;      /* its first step must be an event */
+    bool full;       /* handed over to single steps */
+} rt_plan_out;
+
+/* Writes an event at step at: kind, the states s, whole-step duties. */
+static pwm_rt_event *event_put(rt_plan_out *o, uint32_t at, uint32_t s, uint8_t kind) {
+    pwm_rt_event *v = &o->ev[o->n++];
+    v->at = (uint16_t)at;
+    v->s = (uint8_t)s;
+    v->kind = kind;
+    v->duty[0] = (int32_t)(s & 1u) * PWM_RT_DUTY_ONE;
+    v->duty[1] = (int32_t)((s >> 1) & 1u) * PWM_RT_DUTY_ONE;
+    v->duty[2] = (int32_t)((s >> 2) & 1u) * PWM_RT_DUTY_ONE;
+    return v;
+}
+
+/*
+ * The event of step at, where the legs of mask change (their duties duty,
+ * their states to s's bits); the first step's event before it when due;
+ * the hand-over to single steps when the plan is full.
+ */
+static void event_edges(rt_plan_out *o, uint32_t at, uint32_t mask, const int32_t duty[3],
+                        uint32_t s) {
+    if (o->full) {
+        return;
+    }
+    if (o->need0 && at != 0u) {
+        (void)event_put(o, 0u, o->held, 0u);
+    }
+    o->need0 = false;
+    if (o->n == PWM_RT_EVENTS) {
+        (void)event_put(o, at, 0u, (uint8_t)PWM_RT_PER_STEP);
+        o->full = true;
+        return;
+    }
+    o->held = (o->held & ~mask) | (s & mask);
+    pwm_rt_event *v = event_put(o, at, o->held, 1u);
+    for (uint32_t x = 0u; x < 3u; x++) {
+        if (((mask >> x) & 1u) != 0u) {
+            v->duty[x] = duty[x];
+        }
+    }
+}
+
+/*
+ * The edges of frame f's n steps as events, segment by segment of the
+ * carrier's halves (within one, each leg's comparison is monotone): an
+ * edge inside a segment where the signs at its ends differ (edge_find()),
+ * in step order, and one in the step that crosses into the next half
+ * where that step's ends differ; f's states at its first and last index.
+ * False when the frame cannot be planned (a reference as fast as the
+ * carrier, or out of range).
+ */
+static bool edges_find(const pwm_rt *p, pwm_rt_frame *f, rt_plan_out *o, bool force0,
+                       uint32_t prev) {
+    const uint32_t n = p->n;
+    const uint32_t inc = p->inc_c;
+    const int32_t lim = (int32_t)(inc >> 7);
+    const rt_legs g = {f->ph0, inc, {f->r0[0], f->r0[1], -f->r0[0] - f->r0[1]},
+                       {f->dr[0], f->dr[1], -f->dr[0] - f->dr[1]}};
+    if (n == 0u || n > 65535u || inc == 0u || inc >= 0x80000000u || f->r0[0] >= 0x1000000 ||
+        f->r0[0] <= -0x1000000 || f->r0[1] >= 0x1000000 || f->r0[1] <= -0x1000000) {
+        return false;
+    }
+    for (uint32_t x = 0u; x < 3u; x++) {
+        const uint32_t mag = (g.dr[x] < 0) ? 0u - (uint32_t)g.dr[x] : (uint32_t)g.dr[x];
+        if ((int32_t)mag >= lim || (uint64_t)mag * n >= 0x1000000u) {
+            return false;
+        }
+    }
+    int32_t ea[3];
+    e_legs(&g, 0u, ea);
+    uint32_t sa = state_bits(ea);
+    f->s0 = (uint8_t)sa;
+    o->held = sa;
+    o->need0 = force0 || sa != prev;
+    uint32_t a = 0u;
+    for (;;) {
+        const uint32_t pa = f->ph0 + a * inc;
+        const uint32_t to_half = 0x80000000u - (pa & 0x7fffffffu);
+        const uint32_t steps = (to_half - 1u) / inc + 1u;
+        const uint32_t b = (steps - 1u < n - a) ? a + steps - 1u : n;
+        int32_t eb[3] = {ea[0], ea[1], ea[2]};
+        if (b > a) {
+            e_legs(&g, b, eb);
+        }
+        const uint32_t sb = state_bits(eb);
+        /* Inside the segment: each leg's edge, in step order. */
+        uint32_t todo = sa ^ sb;
+        if (todo != 0u) {
+            uint32_t t[3] = {UINT32_MAX, UINT32_MAX, UINT32_MAX};
+            int32_t duty[3] = {0, 0, 0};
+            for (uint32_t x = 0u; x < 3u; x++) {
+                if (((todo >> x) & 1u) != 0u) {
+                    int32_t e[2];
+                    t[x] = edge_find(&g, x, a, b, (pa & 0x80000000u) == 0u, ea[x], e);
+                    duty[x] = pwm_rt_edge_duty(e[0], e[1], p->den_sh);
+                }
+            }
+            while (todo != 0u) {
+                const uint32_t at = (t[0] < t[1]) ? ((t[0] < t[2]) ? t[0] : t[2])
+                                                  : ((t[1] < t[2]) ? t[1] : t[2]);
+                const uint32_t mask = ((t[0] == at) ? 1u : 0u) | ((t[1] == at) ? 2u : 0u) |
+                                      ((t[2] == at) ? 4u : 0u);
+                event_edges(o, at, mask, duty, sb);
+                for (uint32_t x = 0u; x < 3u; x++) {
+                    t[x] = (((mask >> x) & 1u) != 0u) ? UINT32_MAX : t[x];
+                }
+                todo &= ~mask;
+            }
+        }
+        if (b == n) {
+            f->s_end = (uint8_t)sb;
+            return true;
+        }
+        /* The step from this half into the next. */
+        e_legs(&g, b + 1u, ea);
+        sa = state_bits(ea);
+        const uint32_t mask = sb ^ sa;
+        if (mask != 0u) {
+            int32_t duty[3];
+            for (uint32_t x = 0u; x < 3u; x++) {
+                duty[x] = (((mask >> x) & 1u) != 0u) ? pwm_rt_edge_duty(eb[x], ea[x], p->den_sh)
+                                                    : 0;
+            }
+            event_edges(o, b, mask, duty, sa);
+        }
+        if (b + 1u == n) {
+            f->s_end = (uint8_t)sa;
+            return true;
+        }
+        a = b + 1u;
+    }
+}
+
+/*
+ * Frame c from phase ph with the ramp: the frame's start and its events;
+ * an event at its first step when force0 or its first states differ from
+ * prev (the states the steps before it leave).
+ */
+static void plan_build(pwm_rt *p, uint32_t c, uint32_t ph, const pwm_rt_ramp *ramp, bool force0,
+                       uint32_t prev) {
+    pwm_rt_frame *f = &p->fr[c];
+    rt_plan_out o = {&p->ev[c * (PWM_RT_EVENTS + 1u)], 0u, 0u, false, false};
+    f->ph0 = ph;
+    for (int x = 0; x < 2; x++) {
+        f->r0[x] = ramp->r0[x];
+        f->dr[x] = ramp->dr[x];
+    }
+    if (UUV_LEAN_IMAGE != 0 || !edges_find(p, f, &o, force0, prev)) {
+        int32_t e[3];
+        pwm_rt_e_at(f, p->inc_c, 0u, e);
+        f->s0 = (uint8_t)state_bits(e);
+        pwm_rt_e_at(f, p->inc_c, p->n, e);
+        f->s_end = (uint8_t)state_bits(e);
+        o.n = 0u;
+        (void)event_put(&o, 0u, 0u, (uint8_t)PWM_RT_PER_STEP);
+        return;
+    }
+    if (o.need0) {
+        (void)event_put(&o, 0u, o.held, 0u);
+    }
+    if (!o.full) {
+        (void)event_put(&o, p->n, 0u, (uint8_t)PWM_RT_PER_STEP);
+    }
+}
+
+void pwm_rt_plan(pwm_rt *p, uint32_t c, uint32_t ph, const pwm_rt_ramp *ramp) {
+    plan_build(p, c, ph, ramp, true, 0u);
+}
+
+void pwm_rt_prepare(pwm_rt *p, const pwm_rt_ramp *ramp) {
+    if (UUV_LEAN_IMAGE != 0 || p->n == 0u) {
+        return;
+    }
+    const uint32_t c = p->cur ^ 1u;
+    const pwm_rt_frame *now = &p->fr[p->cur];
+    plan_build(p, c, now->ph0 + p->n * p->inc_c, ramp, false, now->s_end);
+    p->fr[c].ready = true;
+}
+
+void pwm_rt_frames(pwm_rt *p, uint32_t n) {
+    const pwm_rt_frame *now = &p->fr[p->cur];
+    const pwm_rt_ramp ramp = {{now->r0[0], now->r0[1]}, {now->dr[0], now->dr[1]}};
+    p->n = n;
+    pwm_rt_plan(p, p->cur, now->ph0, &ramp);
+    p->k = 0u;
+    p->next = p->cur * (PWM_RT_EVENTS + 1u);
+    p->next_at = p->ev[p->next].at;
+}
+
+void pwm_rt_event_take(pwm_rt *p, int32_t s[3], int32_t duty[3]) {
+    const pwm_rt_event *v = &p->ev[p->next];
+    if (v->kind == (uint8_t)PWM_RT_PER_STEP) {
+        pwm_rt_substep_each(p, s, duty);
+        p->next_at = p->k;
+        return;
+    }
+    for (uint32_t x = 0u; x < 3u; x++) {
+        duty[x] = v->duty[x];
+        s[x] = (int32_t)((v->s >> x) & 1u);
+    }
+    p->next++;
+    p->next_at = p->ev[p->next].at;
+    p->k++;
 }
 
 int32_t pwm_rt_edge_duty(int32_t e0, int32_t e1, uint32_t sh) {

@@ -61,16 +61,59 @@
 
 #include "fixedpoint/fixedpoint.h"
 #include "models/drive/pwm/pwm.h"
+#include "uuv_config.h"
 
 #define PWM_RT_ONE 8388608 /* 2^23: 1 in the Q23 of the references and the carrier */
 
+/*
+ * The plan of one frame (sub-step modulator, no dead time): the steps in
+ * which the legs' states change, found once per frame by the motor task
+ * (pwm_rt_prepare) from the same comparisons e = r - c at the step ends
+ * that the step-by-step form makes. Between the knots of the carrier e is
+ * monotone in each leg (the references change by less per step than the
+ * carrier does), so each leg has at most one edge per half period of the
+ * carrier, which is located exactly among the frame's knots by evaluating
+ * e there; the edge's duty is pwm_rt_edge_duty() of that step's ends, as
+ * the step-by-step form computes it. A step without an event applies the
+ * legs' held states as whole-step duties; an event step applies its
+ * duties and leaves its states. So the plan gives the step-by-step form's
+ * duties and states bit for bit, with no carrier or comparison in the
+ * step. A frame the plan cannot hold (more events than PWM_RT_EVENTS, a
+ * reference faster than the carrier, frames above 65535 steps, or none
+ * set: n = 0) continues step by step from the event that says so
+ * (PWM_RT_PER_STEP). A lean image (uuv_config.h) plans nothing: it
+ * computes every step on its own, without the plans' code.
+ */
+#define PWM_RT_EVENTS 8    /* events a frame's plan holds; one more slot ends it */
+#define PWM_RT_PER_STEP 2u /* an event's kind: every step from this one is computed on its own */
+
 typedef struct {
-    uint32_t ph_c;   /* carrier phase at t_k (2^32 = one turn) */
-    uint32_t inc_c;  /* carrier increment per step */
-    int32_t r[2];    /* references of legs a and b at t_k, Q23 */
-    int32_t dr[2];   /* their change per step, Q23 */
-    int32_t kd;      /* dead time over the step, t_d / T, Q16 (0: none) */
-    uint32_t den_sh; /* the duty division's pre-shift: a step's carrier change below 2^16 */
+    uint16_t at;      /* the step of the frame it falls in (0 = the first) */
+    uint8_t s;        /* the legs' states at that step's end, bit x for leg x */
+    uint8_t kind;     /* 0: whole-step duties; 1: some duty a share of the step; PWM_RT_PER_STEP */
+    int32_t duty[3];  /* the legs' duties in that step, Q15 */
+} pwm_rt_event;
+
+typedef struct {
+    uint32_t ph0;     /* carrier phase at the frame's first step (2^32 = one turn) */
+    int32_t r0[2];    /* references of legs a and b there, Q23 */
+    int32_t dr[2];    /* their change per step, Q23 */
+    uint8_t s0;       /* the legs' states in the first steps, before any event */
+    uint8_t s_end;    /* their states at the frame's end (after step n - 1) */
+    bool ready;       /* prepared for the next pwm_rt_apply() */
+} pwm_rt_frame;
+
+typedef struct {
+    uint32_t k;       /* steps of the frame in force taken */
+    uint32_t next_at; /* the step of its next event (k and next_at adjacent: paired loads) */
+    uint32_t next;    /* that event's index in ev */
+    uint32_t cur;     /* the frame in force: fr[cur], its events from ev[cur * (PWM_RT_EVENTS + 1)] */
+    uint32_t inc_c;   /* carrier increment per step */
+    int32_t kd;       /* dead time over the step, t_d / T, Q16 (0: none) */
+    uint32_t den_sh;  /* the duty division's pre-shift: a step's carrier change below 2^16 */
+    uint32_t n;       /* steps per frame the plans cover (pwm_rt_frames; 0: step by step) */
+    pwm_rt_frame fr[2];
+    pwm_rt_event ev[2 * (PWM_RT_EVENTS + 1)];
 } pwm_rt;
 
 #define PWM_RT_DUTY_ONE 32768 /* a whole step's duty (Q15, as pwm.h's PWM_DUTY_ONE_Q) */
@@ -93,46 +136,46 @@ static inline int32_t pwm_rt_neg(int32_t v) {
     return (int32_t)((uint32_t)v >> 31);
 }
 
+/* The references of legs a and b at step k of the frame in force, Q23 (modulo 2^32 as stepped). */
+static inline int32_t pwm_rt_ref(const pwm_rt_frame *f, int x, uint32_t k) {
+    return (int32_t)((uint32_t)f->r0[x] + k * (uint32_t)f->dr[x]);
+}
+
 /*
  * One step: the leg states held over [t_k, t_k+1] (0 or 1 each, as
- * int32_t, for the inverter's arithmetic), then the carrier and the
- * references advance to t_k+1. Integer only, branch-free but for the
- * carrier's fold; total.
+ * int32_t, for the inverter's arithmetic), then the step is taken.
+ * Integer only, branch-free but for the carrier's fold; total.
  */
 static inline void pwm_rt_step(pwm_rt *p, int32_t s[3]) {
-    const int32_t c = pwm_rt_carrier(p->ph_c);
-    const int32_t ra = p->r[0];
-    const int32_t rb = p->r[1];
+    const pwm_rt_frame *f = &p->fr[p->cur];
+    const int32_t c = pwm_rt_carrier(f->ph0 + p->k * p->inc_c);
+    const int32_t ra = pwm_rt_ref(f, 0, p->k);
+    const int32_t rb = pwm_rt_ref(f, 1, p->k);
     s[0] = pwm_rt_neg(c - ra);
     s[1] = pwm_rt_neg(c - rb);
     s[2] = pwm_rt_neg(c + ra + rb);
-    p->ph_c += p->inc_c;
-    p->r[0] = ra + p->dr[0];
-    p->r[1] = rb + p->dr[1];
+    p->k++;
+}
+
+/* The comparisons e = r - c of the three legs at step j of frame f. */
+static inline void pwm_rt_e_at(const pwm_rt_frame *f, uint32_t inc, uint32_t j, int32_t e[3]) {
+    const int32_t c = pwm_rt_carrier(f->ph0 + j * inc);
+    const int32_t ra = pwm_rt_ref(f, 0, j);
+    const int32_t rb = pwm_rt_ref(f, 1, j);
+    e[0] = ra - c;
+    e[1] = rb - c;
+    e[2] = -ra - rb - c;
 }
 
 /* The comparisons e = r - c of the three legs at t_k (e0) and t_k+1 (e1), Q23. */
 static inline void pwm_rt_ends(const pwm_rt *p, int32_t e0[3], int32_t e1[3]) {
-    const int32_t c0 = pwm_rt_carrier(p->ph_c);
-    const int32_t c1 = pwm_rt_carrier(p->ph_c + p->inc_c);
-    const int32_t ra = p->r[0];
-    const int32_t rb = p->r[1];
-    const int32_t ra1 = ra + p->dr[0];
-    const int32_t rb1 = rb + p->dr[1];
-    e0[0] = ra - c0;
-    e0[1] = rb - c0;
-    e0[2] = -ra - rb - c0;
-    e1[0] = ra1 - c1;
-    e1[1] = rb1 - c1;
-    e1[2] = -ra1 - rb1 - c1;
+    const pwm_rt_frame *f = &p->fr[p->cur];
+    pwm_rt_e_at(f, p->inc_c, p->k, e0);
+    pwm_rt_e_at(f, p->inc_c, p->k + 1u, e1);
 }
 
-/* The carrier and the references advance to t_k+1. */
-static inline void pwm_rt_advance(pwm_rt *p) {
-    p->ph_c += p->inc_c;
-    p->r[0] += p->dr[0];
-    p->r[1] += p->dr[1];
-}
+/* The step is taken: the carrier and the references advance to t_k+1. */
+static inline void pwm_rt_advance(pwm_rt *p) { p->k++; }
 
 /*
  * The on-time of a leg over a step whose comparison goes linearly from e0
@@ -166,11 +209,12 @@ static inline void pwm_rt_sampled(pwm_rt *p, int32_t s[3], int32_t duty[3]) {
 }
 
 /*
- * One sub-step: the duties of the three legs over [t_k, t_k+1] (Q15) and
- * their states at t_k+1 (0 or 1), then the carrier and references advance.
- * No dead time (pwm_rt_substep_dt() takes it). Integer only; total.
+ * One sub-step computed on its own (step by step): the duties of the three
+ * legs over [t_k, t_k+1] (Q15) and their states at t_k+1 (0 or 1), then the
+ * step is taken. No dead time (pwm_rt_substep_dt() takes it). Integer
+ * only; total.
  */
-static inline void pwm_rt_substep(pwm_rt *p, int32_t s[3], int32_t duty[3]) {
+static inline void pwm_rt_substep_each(pwm_rt *p, int32_t s[3], int32_t duty[3]) {
     int32_t e0[3];
     int32_t e1[3];
     pwm_rt_ends(p, e0, e1);
@@ -181,12 +225,49 @@ static inline void pwm_rt_substep(pwm_rt *p, int32_t s[3], int32_t duty[3]) {
     pwm_rt_advance(p);
 }
 
-/* One step by the modulator in force: sampled, or sub-step (no dead time). */
+/*
+ * An event step of the plan (pwm_rt.c, out of line): its duties and
+ * states, and the next event; a PWM_RT_PER_STEP event computes the step
+ * on its own and stays the next. Takes the step.
+ */
+void pwm_rt_event_take(pwm_rt *p, int32_t s[3], int32_t duty[3]);
+
+/*
+ * One sub-step by the frame's plan: pwm_rt_substep_each()'s duties and
+ * states bit for bit, with s holding the states of the step before (the
+ * caller keeps them between steps, and nothing else may change them: the
+ * faulted path takes pwm_rt_substep_each()). Outside the event steps the
+ * held states are the duties. Integer only; total.
+ */
+static inline void pwm_rt_substep(pwm_rt *p, int32_t s[3], int32_t duty[3]) {
+    const uint32_t k = p->k;
+    if (UUV_LEAN_IMAGE != 0) {
+        pwm_rt_substep_each(p, s, duty); /* a lean image plans nothing (uuv_config.h) */
+    } else if (k != p->next_at) {
+        duty[0] = s[0] * PWM_RT_DUTY_ONE;
+        duty[1] = s[1] * PWM_RT_DUTY_ONE;
+        duty[2] = s[2] * PWM_RT_DUTY_ONE;
+        p->k = k + 1u;
+    } else {
+        pwm_rt_event_take(p, s, duty);
+    }
+}
+
+/* One step by the modulator in force: sampled, or sub-step by the plan (no dead time). */
 static inline void pwm_rt_duties(pwm_rt *p, bool sampled, int32_t s[3], int32_t duty[3]) {
     if (sampled) {
         pwm_rt_sampled(p, s, duty);
     } else {
         pwm_rt_substep(p, s, duty);
+    }
+}
+
+/* The same with each step computed on its own (the faulted path's: s may be forced). */
+static inline void pwm_rt_duties_each(pwm_rt *p, bool sampled, int32_t s[3], int32_t duty[3]) {
+    if (sampled) {
+        pwm_rt_sampled(p, s, duty);
+    } else {
+        pwm_rt_substep_each(p, s, duty);
     }
 }
 
@@ -223,17 +304,53 @@ pwm_status pwm_rt_dead_time(pwm_rt *p, uint32_t dead_ns, uint32_t step_ns);
 /*
  * Set-up from the parameters of pwm.h (edges must be PWM_EDGES_SAMPLED;
  * the carrier frequency, its increment and initial phase as pwm_init_q()
- * checks and computes them), references at zero. Returns PWM_OK, or the
- * error of pwm.h and leaves the instance unchanged. Set-up code: divides.
+ * checks and computes them), references at zero, no plans (every step
+ * computed on its own). Returns PWM_OK, or the error of pwm.h and leaves
+ * the instance unchanged. Set-up code: divides.
  */
 pwm_status pwm_rt_init(pwm_rt *p, const pwm_params *pp, uint32_t step_ns);
 
-/* Applies a frame's ramp (the boundary's work: four copies). */
+/*
+ * Frames of n steps planned (n = 0: none, every step computed on its own;
+ * the sub-step modulator without dead time uses them): plans the frame in
+ * force from its start, its first step an event. Set-up code.
+ */
+void pwm_rt_frames(pwm_rt *p, uint32_t n);
+
+/*
+ * The motor task's side: plans the frame that the next pwm_rt_apply() starts
+ * n steps after the start of the frame in force, which must be given the
+ * same ramp. Integer only; a few divisions per edge.
+ */
+void pwm_rt_prepare(pwm_rt *p, const pwm_rt_ramp *ramp);
+
+/* Plans frame c from carrier phase ph with the ramp, its first step an event (pwm_rt.c). */
+void pwm_rt_plan(pwm_rt *p, uint32_t c, uint32_t ph, const pwm_rt_ramp *ramp);
+
+/*
+ * Starts a frame with the ramp (the boundary's work): the frame prepared
+ * for it when it starts where the frame in force ends, else planned here.
+ */
 static inline void pwm_rt_apply(pwm_rt *p, const pwm_rt_ramp *ramp) {
-    p->r[0] = ramp->r0[0];
-    p->r[1] = ramp->r0[1];
-    p->dr[0] = ramp->dr[0];
-    p->dr[1] = ramp->dr[1];
+    const uint32_t c = p->cur ^ 1u;
+    const uint32_t ph = p->fr[p->cur].ph0 + p->k * p->inc_c;
+    pwm_rt_frame *f = &p->fr[c];
+    if (!f->ready || f->ph0 != ph) {
+        pwm_rt_plan(p, c, ph, ramp);
+    }
+    f->ready = false;
+    p->cur = c;
+    p->k = 0u;
+    p->next = c * (PWM_RT_EVENTS + 1u);
+    p->next_at = p->ev[p->next].at;
+}
+
+/* The states for the first step of the frame in force, before any event (a path's start). */
+static inline void pwm_rt_states(const pwm_rt *p, int32_t s[3]) {
+    const uint32_t b = p->fr[p->cur].s0;
+    s[0] = (int32_t)(b & 1u);
+    s[1] = (int32_t)((b >> 1) & 1u);
+    s[2] = (int32_t)((b >> 2) & 1u);
 }
 
 /*
