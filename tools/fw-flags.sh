@@ -40,7 +40,8 @@ addr() { awk -v n="$1" '$2 == n { print $1 }' "$tmp/funcs"; }
 # fast step (drive_fast_step, through d->fast_now) to the C or the kernel.
 for a in $(addr SysTick_Handler); do for b in $(addr fw_fast); do echo "$a $b"; done; done \
     >>"$tmp/edges"
-for a in $(addr fw_fast) $(addr exec_fast_tick_event); do
+for a in $(addr fw_fast) $(addr exec_fast_tick) $(addr exec_fast_tick_event) \
+    $(addr drive_fast_step); do
     for b in $(addr drive_fast_tick) $(addr drive_fast_kernel_v7m); do echo "$a $b"; done
 done >>"$tmp/edges"
 

@@ -60,10 +60,17 @@ fw_stack_static() { # IMAGE OUTDIR MACHINE
     if "$ARM_OBJDUMP" -t "$1" | grep -q ' drive_fast_kernel_v7m$'; then
         kernel=drive_fast_kernel_v7m
     fi
-    # shellcheck disable=SC2046 # one .su file per object
+    # The functions that make that call: the ones of the inline chain the
+    # compiler kept out of line (-Os keeps drive_fast_step(), -O2 inlines it).
+    calls=""
+    for f in fw_fast exec_fast_tick exec_fast_tick_event drive_fast_step; do
+        if "$ARM_OBJDUMP" -t "$1" | grep -q " $f\$"; then
+            calls="$calls --call $f=$kernel"
+        fi
+    done
+    # shellcheck disable=SC2046,SC2086 # one .su file per object; calls is a list of words
     "$ARM_OBJDUMP" -d --no-show-raw-insn "$1" |
-        "$FW_STACK" --frame "$(fw_frame_bytes "$3")" --call SysTick_Handler=fw_fast \
-            --call fw_fast=$kernel --call exec_fast_tick_event=$kernel \
+        "$FW_STACK" --frame "$(fw_frame_bytes "$3")" --call SysTick_Handler=fw_fast $calls \
             --call PendSV_Handler=fw_medium Reset_Handler PendSV_Handler SysTick_Handler \
             HardFault_Handler -- $(find "$objdir" -name '*.su' | sort) >"$2/stack.txt"
     rc=$?

@@ -176,12 +176,12 @@ typedef struct {
 
 static void lanes_load(lanes *L, unsigned l, const drive_segment *d) {
     const pwm_rt *rt = &d->rt;
-    LANE(L->ph_c, l) = rt->ph_c;
+    LANE(L->ph_c, l) = pwm_rt_phase(rt);
     LANE(L->inc_c, l) = rt->inc_c;
     LANE(L->den_sh, l) = rt->den_sh;
     for (int x = 0; x < 2; x++) {
-        LANE(L->r[x], l) = rt->r[x];
-        LANE(L->dr[x], l) = rt->dr[x];
+        LANE(L->r[x], l) = pwm_rt_ref_now(rt, x);
+        LANE(L->dr[x], l) = pwm_rt_slope(rt, x);
         LANE(L->i_l[x], l) = d->ps.ph[x].i_l;
         LANE(L->v_c[x], l) = d->ps.ph[x].v_c;
         LANE(L->i_d[x], l) = d->ps.ph[x].i_d;
@@ -211,11 +211,10 @@ static void lanes_load(lanes *L, unsigned l, const drive_segment *d) {
     LANE(L->sum_v_dc, l) = d->sums.v_dc;
 }
 
-/* Back into the drive: what plain_run() stores (the coefficients are unchanged). */
-static void lanes_store(lanes *L, unsigned l, drive_segment *d) {
-    d->rt.ph_c = LANE(L->ph_c, l);
+/* Back into the drive after n steps: what plain_run() stores (the coefficients are unchanged). */
+static void lanes_store(lanes *L, unsigned l, drive_segment *d, uint32_t n) {
+    pwm_rt_skip(&d->rt, n);
     for (int x = 0; x < 2; x++) {
-        d->rt.r[x] = LANE(L->r[x], l);
         d->ps.ph[x].i_l = LANE(L->i_l[x], l);
         d->ps.ph[x].v_c = LANE(L->v_c[x], l);
         d->ps.ph[x].i_d = LANE(L->i_d[x], l);
@@ -475,7 +474,7 @@ void batch_fast_run(drive_segment *const *d, size_t count, uint32_t n, bool subs
         }
         lanes_run(L, n, substep);
         for (size_t l = 0u; l < m; l++) {
-            lanes_store(&L[l / BATCH_W], (unsigned)(l % BATCH_W), d[i0 + l]);
+            lanes_store(&L[l / BATCH_W], (unsigned)(l % BATCH_W), d[i0 + l], n);
         }
     }
 }

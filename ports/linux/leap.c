@@ -260,12 +260,12 @@ static void tables_check(leap_tables *L, const drive_segment *d) {
  */
 static void scan_signs(const pwm_rt *p, uint32_t n, uint8_t *restrict sig) {
     /* n <= SCAN_MAX */
-    const uint32_t ph0 = p->ph_c;
+    const uint32_t ph0 = pwm_rt_phase(p);
     const uint32_t inc = p->inc_c;
-    const uint32_t r0a = (uint32_t)p->r[0];
-    const uint32_t r0b = (uint32_t)p->r[1];
-    const uint32_t dra = (uint32_t)p->dr[0];
-    const uint32_t drb = (uint32_t)p->dr[1];
+    const uint32_t r0a = (uint32_t)pwm_rt_ref_now(p, 0);
+    const uint32_t r0b = (uint32_t)pwm_rt_ref_now(p, 1);
+    const uint32_t dra = (uint32_t)pwm_rt_slope(p, 0);
+    const uint32_t drb = (uint32_t)pwm_rt_slope(p, 1);
     int32_t w[SCAN_MAX + 1u];
     for (uint32_t j = 0u; j <= n; j++) {
         const uint32_t ph = ph0 + j * inc;
@@ -447,10 +447,7 @@ static bool leap_take(leap_tables *L, drive_segment *d, unsigned s, uint32_t k, 
         ps->u[1] = (float)(v3 * (2.0 * sb - sa - sc));
         ps->i_dc = (float)y[R_IDC_LAST];
     }
-    pwm_rt *rt = &d->rt;
-    rt->ph_c += k * rt->inc_c;
-    rt->r[0] = (int32_t)((uint32_t)rt->r[0] + k * (uint32_t)rt->dr[0]);
-    rt->r[1] = (int32_t)((uint32_t)rt->r[1] + k * (uint32_t)rt->dr[1]);
+    pwm_rt_skip(&d->rt, k);
     for (unsigned x = 0u; x < 3u; x++) {
         d->s[x] = (int32_t)((s >> x) & 1u);
     }

@@ -284,11 +284,24 @@ void pwm_rt_prepare(pwm_rt *p, const pwm_rt_ramp *ramp) {
 void pwm_rt_frames(pwm_rt *p, uint32_t n) {
     const pwm_rt_frame *now = &p->fr[p->cur];
     const pwm_rt_ramp ramp = {{now->r0[0], now->r0[1]}, {now->dr[0], now->dr[1]}};
-    p->n = n;
+    p->n = (UUV_LEAN_IMAGE != 0) ? 0u : n; /* a lean image plans nothing */
     pwm_rt_plan(p, p->cur, now->ph0, &ramp);
     p->k = 0u;
     p->next = p->cur * (PWM_RT_EVENTS + 1u);
     p->next_at = p->ev[p->next].at;
+}
+
+void pwm_rt_skip(pwm_rt *p, uint32_t n) {
+    const uint32_t k = p->k + n;
+    p->k = k;
+    if (p->n == 0u) {
+        return; /* no plans: the steps use no events (as pwm_rt_sampled()) */
+    }
+    while (p->ev[p->next].kind != (uint8_t)PWM_RT_PER_STEP && p->ev[p->next].at < k) {
+        p->next++;
+    }
+    const uint32_t at = p->ev[p->next].at;
+    p->next_at = (at < k) ? k : at;
 }
 
 void pwm_rt_event_take(pwm_rt *p, int32_t s[3], int32_t duty[3]) {

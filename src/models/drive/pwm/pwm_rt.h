@@ -335,7 +335,14 @@ static inline void pwm_rt_apply(pwm_rt *p, const pwm_rt_ramp *ramp) {
     const uint32_t c = p->cur ^ 1u;
     const uint32_t ph = p->fr[p->cur].ph0 + p->k * p->inc_c;
     pwm_rt_frame *f = &p->fr[c];
-    if (!f->ready || f->ph0 != ph) {
+    if (p->n == 0u) {
+        /* No plans: the frame's start only (its events are the one that hands every step over). */
+        f->ph0 = ph;
+        f->r0[0] = ramp->r0[0];
+        f->r0[1] = ramp->r0[1];
+        f->dr[0] = ramp->dr[0];
+        f->dr[1] = ramp->dr[1];
+    } else if (!f->ready || f->ph0 != ph) {
         pwm_rt_plan(p, c, ph, ramp);
     }
     f->ready = false;
@@ -344,6 +351,25 @@ static inline void pwm_rt_apply(pwm_rt *p, const pwm_rt_ramp *ramp) {
     p->next = c * (PWM_RT_EVENTS + 1u);
     p->next_at = p->ev[p->next].at;
 }
+
+/* The carrier phase at the frame's step k now (the step-by-step form's state). */
+static inline uint32_t pwm_rt_phase(const pwm_rt *p) {
+    return p->fr[p->cur].ph0 + p->k * p->inc_c;
+}
+
+/* The reference of leg x (a or b) now, and its change per step. */
+static inline int32_t pwm_rt_ref_now(const pwm_rt *p, int x) {
+    return pwm_rt_ref(&p->fr[p->cur], x, p->k);
+}
+static inline int32_t pwm_rt_slope(const pwm_rt *p, int x) { return p->fr[p->cur].dr[x]; }
+
+/*
+ * n steps taken by a port's own stepping of the same model (the desk's
+ * leaps and lanes): the frame's count moves on, and its next event past
+ * them (unplanned frames: the count only, as the sampled steps leave them).
+ * The caller sets the legs' states after them.
+ */
+void pwm_rt_skip(pwm_rt *p, uint32_t n);
 
 /* The states for the first step of the frame in force, before any event (a path's start). */
 static inline void pwm_rt_states(const pwm_rt *p, int32_t s[3]) {
