@@ -192,7 +192,7 @@ for num in fixed float; do
         "$BUILD/linux-$num/uuvsim" "$BUILD/qemu-test/mps2-an386-$num-motor4kw"
 done
 # The real-time criterion fails make test: the overrun test image with
-# every fast tick some 200 instructions longer no longer keeps real time at
+# every fast tick some 350 instructions longer no longer keeps real time at
 # the shift the image claims.
 run "qemu mps2-an386-fixed simulation, slowed fast tick" fail \
     env FW_RUN_ARGS=overrun=slowed sh tools/qemu-sim-test.sh mps2-an386 fixed \
