@@ -49,14 +49,16 @@ typedef struct {
 /* Leg x's comparison at step j: pwm_rt_e_at()'s, for one leg (the same sums modulo 2^32). */
 static inline int32_t e_leg(const rt_legs *g, uint32_t j, uint32_t x) {
     const int32_t c = pwm_rt_carrier(g->ph0 + j * g->inc);
-    return (int32_t)((uint32_t)g->r0[x] + j * (uint32_t)g->dr[x]) - c;
+    const uint32_t r = (uint32_t)g->r0[x] + j * (uint32_t)g->dr[x];
+    return (int32_t)r - c;
 }
 
 /* The three legs' comparisons at step j. */
 static inline void e_legs(const rt_legs *g, uint32_t j, int32_t e[3]) {
     const int32_t c = pwm_rt_carrier(g->ph0 + j * g->inc);
     for (uint32_t x = 0u; x < 3u; x++) {
-        e[x] = (int32_t)((uint32_t)g->r0[x] + j * (uint32_t)g->dr[x]) - c;
+        const uint32_t r = (uint32_t)g->r0[x] + j * (uint32_t)g->dr[x];
+        e[x] = (int32_t)r - c;
     }
 }
 
@@ -110,9 +112,9 @@ static pwm_rt_event *event_put(rt_plan_out *o, uint32_t at, uint32_t s, uint8_t 
     v->at = (uint16_t)at;
     v->s = (uint8_t)s;
     v->kind = kind;
-    v->duty[0] = (int32_t)(s & 1u) * PWM_RT_DUTY_ONE;
-    v->duty[1] = (int32_t)((s >> 1) & 1u) * PWM_RT_DUTY_ONE;
-    v->duty[2] = (int32_t)((s >> 2) & 1u) * PWM_RT_DUTY_ONE;
+    v->duty[0] = ((s & 1u) != 0u) ? PWM_RT_DUTY_ONE : 0;
+    v->duty[1] = ((s & 2u) != 0u) ? PWM_RT_DUTY_ONE : 0;
+    v->duty[2] = ((s & 4u) != 0u) ? PWM_RT_DUTY_ONE : 0;
     return v;
 }
 
@@ -202,8 +204,12 @@ static bool edges_find(const pwm_rt *p, pwm_rt_frame *f, rt_plan_out *o, bool fo
             while (todo != 0u) {
                 const uint32_t at = (t[0] < t[1]) ? ((t[0] < t[2]) ? t[0] : t[2])
                                                   : ((t[1] < t[2]) ? t[1] : t[2]);
-                const uint32_t mask = ((t[0] == at) ? 1u : 0u) | ((t[1] == at) ? 2u : 0u) |
-                                      ((t[2] == at) ? 4u : 0u);
+                uint32_t mask = 0u;
+                for (uint32_t x = 0u; x < 3u; x++) {
+                    if (t[x] == at) {
+                        mask |= 1u << x;
+                    }
+                }
                 event_edges(o, at, mask, duty, sb);
                 for (uint32_t x = 0u; x < 3u; x++) {
                     t[x] = (((mask >> x) & 1u) != 0u) ? UINT32_MAX : t[x];
@@ -313,7 +319,7 @@ void pwm_rt_event_take(pwm_rt *p, int32_t s[3], int32_t duty[3]) {
     }
     for (uint32_t x = 0u; x < 3u; x++) {
         duty[x] = v->duty[x];
-        s[x] = (int32_t)((v->s >> x) & 1u);
+        s[x] = pwm_rt_bit(v->s, x);
     }
     p->next++;
     p->next_at = p->ev[p->next].at;

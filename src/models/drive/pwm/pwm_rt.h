@@ -84,7 +84,7 @@
  * (PWM_RT_PER_STEP). A lean image (uuv_config.h) plans nothing: it
  * computes every step on its own, without the plans' code.
  */
-#define PWM_RT_EVENTS 8    /* events a frame's plan holds; one more slot ends it */
+#define PWM_RT_EVENTS 8u   /* events a frame's plan holds; one more slot ends it */
 #define PWM_RT_PER_STEP 2u /* an event's kind: every step from this one is computed on its own */
 
 typedef struct {
@@ -113,7 +113,7 @@ typedef struct {
     uint32_t den_sh;  /* the duty division's pre-shift: a step's carrier change below 2^16 */
     uint32_t n;       /* steps per frame the plans cover (pwm_rt_frames; 0: step by step) */
     pwm_rt_frame fr[2];
-    pwm_rt_event ev[2 * (PWM_RT_EVENTS + 1)];
+    pwm_rt_event ev[2u * (PWM_RT_EVENTS + 1u)];
 } pwm_rt;
 
 #define PWM_RT_DUTY_ONE 32768 /* a whole step's duty (Q15, as pwm.h's PWM_DUTY_ONE_Q) */
@@ -138,7 +138,8 @@ static inline int32_t pwm_rt_neg(int32_t v) {
 
 /* The references of legs a and b at step k of the frame in force, Q23 (modulo 2^32 as stepped). */
 static inline int32_t pwm_rt_ref(const pwm_rt_frame *f, int x, uint32_t k) {
-    return (int32_t)((uint32_t)f->r0[x] + k * (uint32_t)f->dr[x]);
+    const uint32_t r = (uint32_t)f->r0[x] + k * (uint32_t)f->dr[x];
+    return (int32_t)r;
 }
 
 /*
@@ -344,6 +345,8 @@ static inline void pwm_rt_apply(pwm_rt *p, const pwm_rt_ramp *ramp) {
         f->dr[1] = ramp->dr[1];
     } else if (!f->ready || f->ph0 != ph) {
         pwm_rt_plan(p, c, ph, ramp);
+    } else {
+        /* Prepared for this start: taken as it is. */
     }
     f->ready = false;
     p->cur = c;
@@ -371,12 +374,21 @@ static inline int32_t pwm_rt_slope(const pwm_rt *p, int x) { return p->fr[p->cur
  */
 void pwm_rt_skip(pwm_rt *p, uint32_t n);
 
+/* Bit x of b as a leg state, 0 or 1. */
+static inline int32_t pwm_rt_bit(uint32_t b, uint32_t x) {
+    int32_t v = 0;
+    if (((b >> x) & 1u) != 0u) {
+        v = 1;
+    }
+    return v;
+}
+
 /* The states for the first step of the frame in force, before any event (a path's start). */
 static inline void pwm_rt_states(const pwm_rt *p, int32_t s[3]) {
     const uint32_t b = p->fr[p->cur].s0;
-    s[0] = (int32_t)(b & 1u);
-    s[1] = (int32_t)((b >> 1) & 1u);
-    s[2] = (int32_t)((b >> 2) & 1u);
+    s[0] = pwm_rt_bit(b, 0u);
+    s[1] = pwm_rt_bit(b, 1u);
+    s[2] = pwm_rt_bit(b, 2u);
 }
 
 /*
