@@ -12,8 +12,8 @@
  * integers modulo 2^32 where the scalar code's values never leave their
  * range, so each lane has the bits of its scalar run.
  *
- * The step below is fast_tick_plain()'s (drive_fast_run.c's plain_run()),
- * piece by piece (the float build's names; the fixed build's are the _q
+ * The step below is drive_rt_step()'s (drive_rt_step.h, as
+ * drive_fast_run.c's plain_run() takes it), piece by piece (the float build's names; the fixed build's are the _q
  * twins):
  *   lane_duties()  pwm_rt_substep() / pwm_rt_sampled() (pwm_rt.h)
  *   lane_phase()   ps_fast_phase_f32(), then the motor's fast companion
@@ -140,7 +140,7 @@ typedef uint32_t vu __attribute__((vector_size(4 * BATCH_W)));
 typedef int64_t vl __attribute__((vector_size(8 * BATCH_W)));
 typedef uint64_t vul __attribute__((vector_size(8 * BATCH_W)));
 
-/* The build's values and frame sums in lanes (drive_fast_run.c's plain_val, plain_sum). */
+/* The build's values and frame sums in lanes (num_val, num_sum of drive_num_q.h / _f32.h). */
 #if UUV_NUMERIC == UUV_NUMERIC_FIXED
 typedef vi vs; /* Q3.28 */
 typedef vl vsum;
