@@ -249,7 +249,7 @@ static bool edges_find(const pwm_rt *p, pwm_rt_frame *f, rt_plan_out *o, bool fo
 static void plan_build(pwm_rt *p, uint32_t c, uint32_t ph, const pwm_rt_ramp *ramp, bool force0,
                        uint32_t prev) {
     pwm_rt_frame *f = &p->fr[c];
-    rt_plan_out o = {&p->ev[c * (PWM_RT_EVENTS + 1u)], 0u, 0u, false, false};
+    rt_plan_out o = {&p->ev[(size_t)c * (PWM_RT_EVENTS + 1u)], 0u, 0u, false, false};
     f->ph0 = ph;
     for (int x = 0; x < 2; x++) {
         f->r0[x] = ramp->r0[x];
