@@ -20,7 +20,9 @@
  * holding copies of these fields only, which the compiler keeps in
  * registers over a run of steps. The Thumb-2 kernel of the fixed M4 and
  * M7 images (ports/cortexm/fast_kernel_v7m.S) computes the same step with
- * the sampled modulator, tested against it (tests/unit/test_fast_kernel.c).
+ * the sub-step modulator and its frame plan, tested against it
+ * (tests/unit/test_fast_kernel.c); with the sampled modulator the images
+ * run this C.
  *
  * The other fast step, fast_tick_general() in drive_segment.c, takes every
  * other configuration: the event modulator, dead time, a moving EMF,

@@ -1,6 +1,6 @@
 /*
  * The fixed build's real-time fast tick in Thumb-2 (ARMv7-M; linked into
- * the Cortex-M4 and M7 images): fast_tick_plain() of the drive segment
+ * the Cortex-M4 and M7 images): drive_rt_step() (src/drive_rt_step.h)
  * with the sub-step modulator's frame plan (pwm_rt.h), the same integer
  * operations in the same order, so the same bits. The C stays the
  * reference: the desk simulator runs it, tests/unit/test_fast_kernel.c
