@@ -31,7 +31,9 @@
  *     divided out) or floor((T + 2^15) / 2^16), v_dc by forward Euler,
  *     clamped; the frame sum of v_dc.
  * Every rounded product sum is SMLAL on a 64-bit accumulator that starts
- * as base 2^32 + 2^31: its high word is base + round(sum / 2^32).
+ * as base 2^32 + 2^31: its high word is base + round(sum / 2^32); a
+ * single product is SMMLAR (base + round(x y / 2^32), the same bits) or,
+ * without a base, SMMULR (ARMv7E-M: the Cortex-M4 and M7).
  *
  * The offsets come from fast_kernel_offsets.h, generated from the C
  * declarations (fast_kernel_offsets.c). The paired loads and stores
@@ -82,7 +84,7 @@
  * difference in DD; FIRST: T = DD S (phase a) else T += DD S, in r4 (WIDE
  * 0) or r1:r4 (WIDE 1, r1 the high word).
  * Registers: r0 d; r3 i_m; r6 i_L(k); r7 v; r8 i_d; r9 j_sh; lr j_L then
- * i_L(k+1); r10, r11 coefficients; r12 the accumulator's low word.
+ * i_L(k+1); r10, r11 coefficients; r12 an accumulator's low word.
  */
     .macro PHASE x, u, dd, first, wide
     ldrd    r6, r7, [r0, #(D_PS_PH + \x * PH_SIZE + PH_I_L)]
@@ -99,13 +101,10 @@
     adds    r9, r9, lr
     subs    r9, r9, r3
     ldr     r10, [r0, #(D_PS_K + K_NODE)]
-    mov     r12, #HALF
-    movs    r11, #0
-    smlal   r12, r11, r9, r10
+    smmulr  r11, r9, r10
     /* i_L(k+1) = hi((j_L 2^32 + 2^31) + dv neg_g_l) */
     ldrd    r9, r10, [r0, #(D_PS_K + K_NEG_G_L)]
-    mov     r12, #HALF
-    smlal   r12, lr, r11, r9
+    smmlar  lr, r11, r9, lr
     /* i_d(k+1) = hi((i_d 2^32 + 2^31) + i_d neg_a_d + dv g_d) */
     ldr     r9, [r0, #(D_PS_K + K_NEG_A_D)]
     mov     r12, #HALF
@@ -129,8 +128,7 @@
     subs    r9, lr, r3
     sub     r9, r9, r8, lsl #1
     ldr     r10, [r0, #(D_PS_K + K_A_D)]
-    mov     r12, #HALF
-    smlal   r12, r9, r8, r10
+    smmlar  r9, r8, r10, r9
     strd    lr, r7, [r0, #(D_PS_PH + \x * PH_SIZE + PH_I_L)]
     strd    r8, r9, [r0, #(D_PS_PH + \x * PH_SIZE + PH_I_D)]
     /* T: the DC-link current's sum */
@@ -152,8 +150,7 @@
     ldr     r10, [r0, #(D_E + 4 * \x)]
     ldr     r11, [r0, #D_K32]
     subs    r10, r7, r10
-    mov     r12, #HALF
-    smlal   r12, r3, r10, r11
+    smmlar  r3, r10, r11, r3
     str     r3, [r0, #(D_IFAST + 4 * \x)]
     /* The frame sum of v (64 bits) */
     ldrd    r10, r11, [r0, #(D_SUM_VCAP + 8 * \x)]
@@ -162,13 +159,11 @@
     strd    r10, r11, [r0, #(D_SUM_VCAP + 8 * \x)]
     .endm
 
-/* v3 = hi(v_dc 0x55555555 + 2^31) in r3 (r1, r2, r7 scratch). */
+/* v3 = hi(v_dc 0x55555555 + 2^31) in r3 (r1, r7 scratch). */
     .macro THIRD
     ldr     r7, [r0, #D_PS_VDC]
-    ldr     r1, =0x55555555
-    mov     r2, #HALF
-    movs    r3, #0
-    smlal   r2, r3, r7, r1
+    mov     r1, #0x55555555
+    smmulr  r3, r7, r1
     .endm
 
     .global drive_fast_kernel_v7m
@@ -186,18 +181,17 @@ drive_fast_kernel_v7m:
     ldrd    r4, r5, [r0, #D_S]
     ldr     r6, [r0, #(D_S + 8)]
 .Lheld:
-    /* Inverter: v3 (r3); u_a = n_a v3 (r1), u_b = n_b v3 (r2). */
-    THIRD
-    rsb     r1, r5, r4, lsl #1
-    subs    r1, r1, r6
-    rsb     r2, r4, r5, lsl #1
-    subs    r2, r2, r6
-    mul     r1, r3, r1
-    mul     r2, r3, r2
-    strd    r1, r2, [r0, #D_PS_U]
     /* dd_a = s_a - s_c (r4), dd_b = s_b - s_c (r5) */
     subs    r4, r4, r6
     subs    r5, r5, r6
+    /* Inverter: v3 (r3); u_a = n_a v3 (r1), u_b = n_b v3 (r2), with
+     * n_a = 2 dd_a - dd_b, n_b = 2 dd_b - dd_a. */
+    THIRD
+    rsb     r1, r5, r4, lsl #1
+    rsb     r2, r4, r5, lsl #1
+    mul     r1, r3, r1
+    mul     r2, r3, r2
+    strd    r1, r2, [r0, #D_PS_U]
     PHASE   0, r1, r4, 1, 0
     PHASE   1, r2, r5, 0, 0
     /* DC-link current i_dc = floor((T + 1) / 2) */
@@ -247,27 +241,20 @@ drive_fast_kernel_v7m:
     ldr     r4, [r8, #(D_RT_EV + EV_DUTY)]
     ldr     r5, [r8, #(D_RT_EV + EV_DUTY + 4)]
     ldr     r6, [r8, #(D_RT_EV + EV_DUTY + 8)]
-    /* Inverter: 8 v3 (r3); u_x = hi(8 v3 w_x 2^14 + 2^31) (r1, r2). */
-    THIRD
-    lsls    r3, r3, #3
-    rsb     r1, r5, r4, lsl #1
-    subs    r1, r1, r6
-    lsls    r1, r1, #14
-    rsb     r2, r4, r5, lsl #1
-    subs    r2, r2, r6
-    lsls    r2, r2, #14
-    mov     r7, #HALF
-    movs    r9, #0
-    smlal   r7, r9, r3, r1
-    mov     r7, #HALF
-    movs    r10, #0
-    smlal   r7, r10, r3, r2
-    mov     r1, r9
-    mov     r2, r10
-    strd    r1, r2, [r0, #D_PS_U]
     /* dd_a = d_a - d_c (r4), dd_b = d_b - d_c (r5), Q15 units */
     subs    r4, r4, r6
     subs    r5, r5, r6
+    /* Inverter: 8 v3 (r3); u_x = hi(8 v3 w_x 2^14 + 2^31) (r1, r2), with
+     * w_a = 2 dd_a - dd_b, w_b = 2 dd_b - dd_a. */
+    THIRD
+    lsls    r3, r3, #3
+    rsb     r1, r5, r4, lsl #1
+    lsls    r1, r1, #14
+    rsb     r2, r4, r5, lsl #1
+    lsls    r2, r2, #14
+    smmulr  r1, r3, r1
+    smmulr  r2, r3, r2
+    strd    r1, r2, [r0, #D_PS_U]
     PHASE   0, r1, r4, 1, 1
     PHASE   1, r2, r5, 0, 1
     /* DC-link current i_dc = floor((T + 2^15) / 2^16) */
