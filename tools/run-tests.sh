@@ -126,16 +126,16 @@ for v in linux-fixed linux-float; do
     run "host $v property through uuvsim, 100" pass sh tests/host/test_property.sh \
         "$BUILD/$v/uuvsim" 100 1
     run "host $v output safety" pass sh tests/host/test_outputs.sh "$BUILD/$v/uuvsim"
-    run "host $v batch: every run's outputs its single run's" pass sh tests/host/test_batch.sh \
+    run "host $v batch = its single runs" pass sh tests/host/test_batch.sh \
         "$BUILD/$v/uuvsim"
-    run "host $v batch's lane step against drive_fast_run, bit for bit" pass \
+    run "host $v batch lanes = scalar step" pass \
         "$BUILD/$v/test_batch_lanes"
 done
 for v in linux-fixed linux-float; do
     run "host $v parameter sets" pass sh tests/host/test_params.sh "$BUILD/$v/uuvsim"
     run "host $v sweeps, resume, shards" pass sh tests/host/test_sweep.sh "$BUILD/$v/uuvsim"
     run "host $v fault injection" pass sh tests/host/test_faults.sh "$BUILD/$v/uuvsim"
-    run "host $v exact leaps (--fast-path leap)" pass sh tests/host/test_leap.sh "$BUILD/$v/uuvsim"
+    run "host $v leaps (--fast-path leap)" pass sh tests/host/test_leap.sh "$BUILD/$v/uuvsim"
     run "host $v soak, 600 s (make soak: 3600 s)" pass sh tests/host/test_soak.sh \
         "$BUILD/$v/uuvsim" 600
 done
