@@ -694,7 +694,11 @@ static void test_rt_plan(void) {
             "handed over to single steps, %u differing", (unsigned)trials, (unsigned)steps,
             (unsigned)edges, (unsigned)planned, (unsigned)per_step, (unsigned)bad);
     UT_EQ_INT(bad, 0);
-    UT_CHECK(planned > 5000u && per_step > 1000u && per_step < steps);
+    if (UUV_LEAN_IMAGE != 0) {
+        UT_CHECK(planned == 0u); /* a lean image plans nothing: every step is its own */
+    } else {
+        UT_CHECK(planned > 5000u && per_step > 1000u && per_step < steps);
+    }
 }
 
 void suite_pwm(void) {
