@@ -1,7 +1,7 @@
 /*
  * drive_fast_run(): the desk's runs of fast steps (drive_segment.h), for
  * either numeric build. On the real-time path (switching inverter without
- * dead time, held EMF, mean or sampled coupling: the drive's "plain" path)
+ * dead time, held EMF, mean or sampled coupling)
  * the fields the real-time step uses (drive_rt_step.h, the step
  * drive_fast_tick() takes) are copied into a local drive, stepped n times
  * and copied back, so that they stay in registers between the steps
@@ -19,7 +19,7 @@
  * sampled selects the modulator (a constant at each call, so that each
  * call is its own loop).
  */
-static inline void plain_run(drive_segment *d, uint32_t n, const bool sampled) {
+static inline void rt_run(drive_segment *d, uint32_t n, const bool sampled) {
     drive_segment r; /* only the fields drive_rt_step() uses are set and read */
     r.cfg.modulator = sampled ? DRIVE_MODULATOR_SAMPLED : DRIVE_MODULATOR_SUBSTEP;
     r.rt = d->rt;
@@ -51,15 +51,15 @@ static inline void plain_run(drive_segment *d, uint32_t n, const bool sampled) {
 }
 
 void drive_fast_run(drive_segment *d, uint32_t n) {
-    if (!d->plain || d->fast_now != NULL) {
+    if (!d->rt_path || d->fast_now != NULL) {
         for (uint32_t k = 0u; k < n; k++) {
             drive_fast_step(d);
         }
         return;
     }
     if (d->cfg.modulator == DRIVE_MODULATOR_SAMPLED) {
-        plain_run(d, n, true);
+        rt_run(d, n, true);
     } else {
-        plain_run(d, n, false);
+        rt_run(d, n, false);
     }
 }

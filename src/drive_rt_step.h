@@ -2,7 +2,7 @@
  * The drive's real-time 2 us step, written once for both numeric builds
  * (the build's arithmetic from its numeric adapter, drive_num_q.h or
  * drive_num_f32.h): the switching inverter without dead time, the EMF
- * held over the frame, no faults (the drive's "plain" path).
+ * held over the frame, no faults (the drive's real-time path).
  *
  *   modulator   the real-time modulator's duties (pwm_rt.h): sub-step or sampled;
  *   stage       the power stage's step (power_stage_fast.h): the inverter,

@@ -43,11 +43,11 @@ drive_status drive_init(drive_segment *d, const drive_config *cfg, const propell
     uint32_t mod_ns = cfg->fast_ns;
     induction_motor_params mp = *cfg->motor;
     if (averaged) {
-        if (DRIVE_NUM(inverter_qs_init)(&d->qs, &pwm_p, cfg->fast_ns, cfg->v_dc0_v) !=
-            INVERTER_AVG_OK) {
+        if (DRIVE_NUM(inverter_quasi_static_init)(&d->avg_stage, &pwm_p, cfg->fast_ns,
+                                                  cfg->v_dc0_v) != INVERTER_AVG_OK) {
             return DRIVE_ERR_MODEL;
         }
-        d->mod = &d->qs.mod;
+        d->mod = &d->avg_stage.mod;
         d->stage = NULL;
         /* The filter's series branch joins the stator (inverter_avg.h). */
         mp.rs_ohm += d->ps_params.r_l_ohm;
@@ -86,12 +86,12 @@ drive_status drive_init(drive_segment *d, const drive_config *cfg, const propell
     }
     d->filt_k = num_filter_gain(cfg->fast_per_medium);
     d->k_deriv = num_deriv_gain(fast_s);
-    d->plain_ok = num_rt_gain_ok(d->NUM_RT_GAIN) && (cfg->inverter == DRIVE_INVERTER_SWITCHING) &&
-               (cfg->dead_time_ns == 0u) &&
-               (cfg->down == COUPLE_ZOH || cfg->down == COUPLE_STAGGER) &&
-               (cfg->up != COUPLE_FILTER) && !cfg->energy_audit;
+    d->rt_path_ok = num_rt_gain_ok(d->NUM_RT_GAIN) && (cfg->inverter == DRIVE_INVERTER_SWITCHING) &&
+                    (cfg->dead_time_ns == 0u) &&
+                    (cfg->down == COUPLE_ZOH || cfg->down == COUPLE_STAGGER) &&
+                    (cfg->up != COUPLE_FILTER) && !cfg->energy_audit;
     d->kernel_ok = (cfg->modulator == DRIVE_MODULATOR_SUBSTEP);
-    d->plain = d->plain_ok;
+    d->rt_path = d->rt_path_ok;
     d->staggered = drive_staggered(cfg->down, cfg->fast_per_medium);
     d->corr_pending = num_corr_pending(d->staggered, cfg->fast_per_medium);
     if (DRIVE_NUM(induction_motor_load)(&d->motor, 1.0, &d->load_next) != INDUCTION_MOTOR_OK) {
@@ -104,7 +104,7 @@ drive_status drive_init(drive_segment *d, const drive_config *cfg, const propell
 
 /* The DC-link voltage of the stage in use, whichever it is. */
 static num_val stage_v_dc(const drive_segment *d) {
-    return !DRIVE_AVERAGED(d) ? d->stage->v_dc : d->qs.v_dc;
+    return !DRIVE_AVERAGED(d) ? d->stage->v_dc : d->avg_stage.v_dc;
 }
 
 /* The fast companion's current step on the general path (drive_num_*.h). */
@@ -129,9 +129,7 @@ static void rt_duties(drive_segment *d, int32_t duty[3]) {
 }
 
 /* The real-time step (drive_rt_step.h) on the drive. */
-static inline void fast_tick_plain(drive_segment *d) {
-    drive_rt_step(d);
-}
+static inline void fast_tick_rt(drive_segment *d) { drive_rt_step(d); }
 
 /* What the faults and a trip leave of each leg (leg_fault.h), by the filter currents. */
 static void legs_faulted(const drive_segment *d, leg_state f[3]) {
@@ -219,25 +217,25 @@ static void fast_tick_general(drive_segment *d) {
 }
 
 void drive_fast_tick(drive_segment *d) {
-    if (d->plain) {
-        fast_tick_plain(d);
+    if (d->rt_path) {
+        fast_tick_rt(d);
     } else {
         fast_tick_general(d);
     }
 }
 
 /* The real-time path on or off, and the step drive_fast_step() calls with it. */
-static void plain_set(drive_segment *d, bool plain) {
-    if (plain && !d->plain) {
+static void rt_path_set(drive_segment *d, bool on) {
+    if (on && !d->rt_path) {
         pwm_rt_states(&d->rt, d->s); /* the plan holds the states from here (pwm_rt.h) */
     }
-    d->plain = plain;
-    d->fast_now = (plain && d->kernel_ok) ? d->kernel : NULL;
+    d->rt_path = on;
+    d->fast_now = (on && d->kernel_ok) ? d->kernel : NULL;
 }
 
 void drive_use_fast_kernel(drive_segment *d, drive_fast_kernel *kernel) {
     d->kernel = kernel;
-    plain_set(d, d->plain);
+    rt_path_set(d, d->rt_path);
 }
 
 /* Applies requested faults at a slow boundary (fast context). */
@@ -257,7 +255,7 @@ static void faults_apply(drive_segment *d) {
 /*
  * What the slow boundary changes besides the battery (fast context): the
  * faults and the trip the background requested. With neither requested
- * the real-time path stays as it is (plain is a function of plain_ok, the
+ * the real-time path stays as it is (rt_path is a function of rt_path_ok, the
  * faults and the trip, which only change here and in the latch).
  */
 static void slow_boundary_apply(drive_segment *d) {
@@ -270,8 +268,8 @@ static void slow_boundary_apply(drive_segment *d) {
     if (d->trip_req != (uint8_t)DRIVE_TRIP_NONE && d->trip == (uint8_t)DRIVE_TRIP_NONE) {
         d->trip = d->trip_req;
     }
-    plain_set(d, d->plain_ok && d->fault.switch_open == 0u && d->fault.phase_open == 0u &&
-                     d->trip == (uint8_t)DRIVE_TRIP_NONE);
+    rt_path_set(d, d->rt_path_ok && d->fault.switch_open == 0u && d->fault.phase_open == 0u &&
+                       d->trip == (uint8_t)DRIVE_TRIP_NONE);
 }
 
 /* What the motor task published takes effect (the latch; inline in the boundary's second half). */
@@ -279,14 +277,14 @@ static inline void latch_apply(drive_segment *d) {
     const drive_latch *o = &d->out;
     if (d->uv_req && d->trip == (uint8_t)DRIVE_TRIP_NONE) {
         d->trip = (uint8_t)DRIVE_TRIP_UNDERVOLTAGE;
-        plain_set(d, false);
+        rt_path_set(d, false);
     }
     pwm_rt_apply(&d->rt, &o->ramp);
     d->i_fast[0] += o->corr[0];
     d->i_fast[1] += o->corr[1];
     d->e[0] = o->e[0];
     d->e[1] = o->e[1];
-    if (!d->plain) {
+    if (!d->rt_path) {
         d->e_step[0] = o->de[0];
         d->e_step[1] = o->de[1];
         if (d->out.cmd_new) {
@@ -340,20 +338,20 @@ void drive_medium_publish(drive_segment *d) {
  * path's boundary.
  */
 __attribute__((noinline)) static void begin_averaged(drive_segment *d, bool slow_boundary) {
-    DRIVE_NUM(inverter_qs_step)(&d->qs, &d->bus, d->i_fast[0], d->i_fast[1]);
+    DRIVE_NUM(inverter_quasi_static_step)(&d->avg_stage, &d->bus, d->i_fast[0], d->i_fast[1]);
     if (slow_boundary && d->battery_new) {
         d->bus = d->bus_next;
         battery_take(d);
     }
     drive_frame_sums *m = &d->medium_in;
     for (int x = 0; x < 2; x++) {
-        m->v_cap[x] = d->qs.u[x];
-        m->v_mark[x] = d->qs.u[x];
-        m->filt_mark[x] = num_filt_of(d->qs.u[x]);
+        m->v_cap[x] = d->avg_stage.u[x];
+        m->v_mark[x] = d->avg_stage.u[x];
+        m->filt_mark[x] = num_filt_of(d->avg_stage.u[x]);
         m->i_mark[x] = d->i_fast[x];
     }
-    m->v_dc = d->qs.v_dc;
-    m->sat = d->qs.sat_count;
+    m->v_dc = d->avg_stage.v_dc;
+    m->sat = d->avg_stage.sat_count;
 }
 
 void drive_medium_begin(drive_segment *d, bool slow_boundary) {
@@ -529,7 +527,7 @@ void drive_medium_task(drive_segment *d, bool control_due, bool slow_boundary) {
         w->v_dc_end = stage_v_dc(d);
         w->cmd = d->cmd;
         w->trip = d->trip;
-        w->saturations = s->sat + d->pwm.sat_count + d->qs.mod.sat_count + NUM_MODEL_SAT(d) +
+        w->saturations = s->sat + d->pwm.sat_count + d->avg_stage.mod.sat_count + NUM_MODEL_SAT(d) +
                          d->ps_clamps;
         d->slow_out = *w;
         *w = (drive_slow_sums){0};
@@ -587,9 +585,8 @@ void drive_fault_request(drive_segment *d, const drive_faults *f) {
         /* The averaged layer: the bus constants fold the capacitance in;
          * they take effect at the next slow boundary, with the fault. */
         d->ps_params.c_dc_f = faulted.c_dc_f;
-        d->ps_clamps += DRIVE_NUM(inverter_qs_battery)(&d->qs, d->ps_params.c_dc_f,
-                                                       d->bat_next.g_s, d->bat_next.b_a,
-                                                       &d->bus_next);
+        d->ps_clamps += DRIVE_NUM(inverter_quasi_static_battery)(
+            &d->avg_stage, d->ps_params.c_dc_f, d->bat_next.g_s, d->bat_next.b_a, &d->bus_next);
         d->battery_new = true;
     } else if (DRIVE_NUM(power_stage_init)(&scratch, &faulted, d->stage->step_ns, 600.0) ==
                PS_OK) {
@@ -615,8 +612,8 @@ void drive_trip_request(drive_segment *d, drive_trip why) {
 void drive_battery_next(drive_segment *d, const drive_battery *next) {
     d->bat_next = *next;
     if (DRIVE_AVERAGED(d)) {
-        d->ps_clamps += DRIVE_NUM(inverter_qs_battery)(&d->qs, d->ps_params.c_dc_f, next->g_s,
-                                                       next->b_a, &d->bus_next);
+        d->ps_clamps += DRIVE_NUM(inverter_quasi_static_battery)(
+            &d->avg_stage, d->ps_params.c_dc_f, next->g_s, next->b_a, &d->bus_next);
     } else {
         d->ps_clamps += DRIVE_NUM(power_stage_battery)(d->stage, next->g_s, next->b_a,
                                                        &d->battery_next);
@@ -627,8 +624,8 @@ void drive_battery_next(drive_segment *d, const drive_battery *next) {
 void drive_start(drive_segment *d, const drive_battery *battery) {
     d->bat_next = d->bat_in_force = d->bat_done = *battery;
     if (DRIVE_AVERAGED(d)) {
-        d->ps_clamps += DRIVE_NUM(inverter_qs_battery)(&d->qs, d->ps_params.c_dc_f, battery->g_s,
-                                                       battery->b_a, &d->bus);
+        d->ps_clamps += DRIVE_NUM(inverter_quasi_static_battery)(
+            &d->avg_stage, d->ps_params.c_dc_f, battery->g_s, battery->b_a, &d->bus);
         d->bus_next = d->bus;
         return;
     }
@@ -646,14 +643,14 @@ static void trace_averaged(const drive_segment *d, drive_trace_row *row) {
     row->s[0] = row->s[1] = row->s[2] = 0u;
     row->m_index = num_si_m(&d->cmd);
     row->f_hz = num_si_f(&d->cmd);
-    row->v_dc = num_trace_volts(d->qs.v_dc);
+    row->v_dc = num_trace_volts(d->avg_stage.v_dc);
     for (int x = 0; x < 2; x++) {
-        row->v_inv[x] = row->v_cap[x] = num_trace_volts(d->qs.u[x]);
+        row->v_inv[x] = row->v_cap[x] = num_trace_volts(d->avg_stage.u[x]);
         row->i_motor[x] = num_si_amps_scaled(d->i_fast[x]);
     }
     row->v_inv[2] = row->v_cap[2] = -row->v_inv[0] - row->v_inv[1];
     row->i_motor[2] = -row->i_motor[0] - row->i_motor[1];
-    row->i_dc = num_si_amps_scaled(d->qs.i_dc);
+    row->i_dc = num_si_amps_scaled(d->avg_stage.i_dc);
     row->n_rpm = num_motor_rpm(&d->mout);
     row->te_nm = num_si_torque((double)num_motor_te(&d->mout));
 }

@@ -259,15 +259,16 @@ typedef struct {
 
 struct drive_segment {
     drive_config cfg;
-    bool plain;                 /* the real-time path: switching, ZOH or staggered, mean or sample */
-    drive_fast_kernel *fast_now; /* kernel while plain, else NULL: what drive_fast_step() calls */
+    bool rt_path; /* the real-time path: switching, ZOH or staggered, mean or sample */
+    drive_fast_kernel *fast_now; /* kernel while rt_path, else NULL: what drive_fast_step() calls */
     /* Fast segment: the real-time modulator and power stage (switching), or the general ones. */
     pwm_rt rt;
     int32_t s[3];               /* leg states of the last step (switching) */
     DRIVE_NUM(pwm) pwm;
     DRIVE_NUM(power_stage) ps;
-    DRIVE_NUM(inverter_qs) qs;  /* the averaged layer's stage */
-    DRIVE_NUM(inverter_qs_bus) bus, bus_next; /* its DC-link constants: in force, next slow frame */
+    DRIVE_NUM(inverter_quasi_static) avg_stage; /* the averaged layer's stage */
+    /* The averaged stage's DC-link constants: in force, and for the next slow frame. */
+    DRIVE_NUM(inverter_quasi_static_bus) bus, bus_next;
     DRIVE_NUM(pwm) *mod;        /* the general modulator in use (event or averaged) */
     DRIVE_NUM(power_stage) *stage; /* the power stage in use (ps; NULL in the averaged layer) */
     DRIVE_NUM(pwm_out) pout;    /* the general modulator's last step */
@@ -323,7 +324,7 @@ struct drive_segment {
     uint8_t trip;               /* drive_trip: written by the fast step only */
     uint8_t trip_req;           /* a trip the background requested, applied at a slow boundary */
     bool uv_req;                /* the motor task saw an under-voltage (latched next) */
-    bool plain_ok;              /* the configuration allows the real-time path */
+    bool rt_path_ok;              /* the configuration allows the real-time path */
     bool staggered;             /* the latch comes half a frame after the release */
     bool kernel_ok;             /* the real-time path is the one a port's kernel computes */
     drive_fast_kernel *kernel;  /* a port's real-time step, or NULL (drive_use_fast_kernel) */
@@ -340,7 +341,7 @@ void drive_fast_run(drive_segment *d, uint32_t n);
 
 /*
  * Hands the real-time step to a port's kernel, or back to the C when
- * kernel is NULL: the drive's "plain" path (switching inverter, no dead
+ * kernel is NULL: the drive's real-time path (switching inverter, no dead
  * time, held EMF, the mean or sampled coupling, no faults) with the
  * sub-step modulator by its frame plans (pwm_rt.h), the step such a
  * kernel computes. The kernel must compute what drive_fast_tick()

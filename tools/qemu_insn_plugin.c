@@ -239,7 +239,7 @@ static void on_exit_qemu(qemu_plugin_id_t id, void *userdata) {
                 char name[MAX_NAME * (MAX_MARKS + 1) + 8];
                 int len = snprintf(name, sizeof name, "%s", g->name);
                 if (c == 0) {
-                    len += snprintf(name + len, sizeof name - (size_t)len, ".plain");
+                    len += snprintf(name + len, sizeof name - (size_t)len, ".step_only");
                 }
                 for (int m = 0; m < g->n_marks; m++) {
                     if (c & (1u << m)) {

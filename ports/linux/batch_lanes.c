@@ -13,8 +13,8 @@
  * range, so each lane has the bits of its scalar run.
  *
  * The step below is drive_rt_step()'s (drive_rt_step.h, as
- * drive_fast_run.c's plain_run() takes it), piece by piece (the float build's names; the fixed build's are the _q
- * twins):
+ * drive_fast_run.c's rt_run() takes it), piece by piece (the float build's names; the fixed
+ * build's are the _q twins):
  *   lane_duties()  pwm_rt_substep() / pwm_rt_sampled() (pwm_rt.h)
  *   lane_phase()   ps_fast_phase_f32(), then the motor's fast companion
  *                  i += (v_c - e) k_l and the frame sum of v_c
@@ -39,7 +39,7 @@
 #include "models/drive/inverter/power_stage_fast.h"
 #include "models/drive/pwm/pwm_rt.h"
 
-bool batch_lane_ready(const drive_segment *d) { return d->plain && d->fast_now == NULL; }
+bool batch_lane_ready(const drive_segment *d) { return d->rt_path && d->fast_now == NULL; }
 
 #define BATCH_PASS_MAX 4096 /* executives per pass */
 
@@ -153,7 +153,7 @@ typedef vf vsum;
 #define DRIVE_GAIN(d) ((d)->k_l)
 #endif
 
-/* The lanes' state: what plain_run() keeps in locals, one element per run. */
+/* The lanes' state: what rt_run() keeps in locals, one element per run. */
 typedef struct {
     /* Modulator (pwm_rt). */
     vu ph_c, inc_c, den_sh;
@@ -211,7 +211,7 @@ static void lanes_load(lanes *L, unsigned l, const drive_segment *d) {
     LANE(L->sum_v_dc, l) = d->sums.v_dc;
 }
 
-/* Back into the drive after n steps: what plain_run() stores (the coefficients are unchanged). */
+/* Back into the drive after n steps: what rt_run() stores (the coefficients are unchanged). */
 static void lanes_store(lanes *L, unsigned l, drive_segment *d, uint32_t n) {
     pwm_rt_skip(&d->rt, n);
     for (int x = 0; x < 2; x++) {

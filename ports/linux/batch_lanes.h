@@ -3,7 +3,7 @@
  * uuvsim batch, batch.c).
  *
  * batch_fast_run() takes the drives of up to any number of runs, each on
- * the real-time path (drive.plain, no port kernel) with the same modulator,
+ * the real-time path (drive.rt_path, no port kernel) with the same modulator,
  * and steps each n times: the bits of drive_fast_run(d[i], n) for every i.
  * The drives' states are gathered into lanes (one run per lane, a vector
  * of BATCH_LANES lanes, the build's width), stepped together and scattered

@@ -96,7 +96,7 @@ static void key_of(const drive_segment *d, float key[10]) {
 /*
  * One ordinary step of the real-time path in double, on z (linear in z:
  * the inputs are entries of z), in the exact path's operations
- * (fast_tick_plain(), power_stage_nodes.h) without its roundings. out: the
+ * (fast_tick_rt(), power_stage_nodes.h) without its roundings. out: the
  * new z (inputs copied), outs: u_a, u_b, i_dc of the step.
  */
 static void step_d(const float key[10], unsigned s, const double z[NZ], double out[NZ],
@@ -458,7 +458,7 @@ static bool leap_take(leap_tables *L, drive_segment *d, unsigned s, uint32_t k, 
 
 /* Whether the run may leap at all: the path leap.h describes. */
 static bool leap_path(const drive_segment *d) {
-    return d->plain && d->fast_now == NULL && d->cfg.inverter == DRIVE_INVERTER_SWITCHING &&
+    return d->rt_path && d->fast_now == NULL && d->cfg.inverter == DRIVE_INVERTER_SWITCHING &&
            d->cfg.modulator == DRIVE_MODULATOR_SUBSTEP && d->cfg.dead_time_ns == 0u &&
            d->cfg.down == COUPLE_ZOH && d->cfg.up == COUPLE_AVG && !d->cfg.energy_audit;
 }

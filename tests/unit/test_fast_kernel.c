@@ -128,7 +128,7 @@ void suite_fast_kernel(void) {
     UT_TEST("set-up: a switching drive on the real-time path");
     UT_CHECK(propeller_init(&prop, &propeller_params_default) == PROPELLER_OK);
     UT_CHECK(drive_init(&ref, &c, &prop) == DRIVE_OK);
-    UT_CHECK(ref.plain);
+    UT_CHECK(ref.rt_path);
     drive_battery bat = {.g_s = 0.25, .b_a = 150.0};
     drive_start(&ref, &bat);
 
@@ -179,14 +179,14 @@ void suite_fast_kernel(void) {
     UT_CHECK(ker.fast_now == drive_fast_kernel_v7m);
     drive_use_fast_kernel(&ker, NULL);
     UT_CHECK(ker.fast_now == NULL);
-    ker.plain = false; /* as a fault or a trip leaves it */
+    ker.rt_path = false; /* as a fault or a trip leaves it */
     drive_use_fast_kernel(&ker, drive_fast_kernel_v7m);
     UT_CHECK(ker.fast_now == NULL);
     /* The sampled modulator is the C's only: no kernel for it. */
     c.modulator = DRIVE_MODULATOR_SAMPLED;
     UT_CHECK(drive_init(&ker, &c, &prop) == DRIVE_OK);
     drive_use_fast_kernel(&ker, drive_fast_kernel_v7m);
-    UT_CHECK(ker.plain && ker.fast_now == NULL);
+    UT_CHECK(ker.rt_path && ker.fast_now == NULL);
 }
 
 #else

@@ -15,7 +15,7 @@
 #include "ut.h"
 
 void suite_inverter_avg(void);
-static void suite_inverter_qs(void);
+static void suite_inverter_quasi_static(void);
 
 /* Static: the instances hold a whole power stage, kept off the small target stacks. */
 static inverter_avg_q inv_q;
@@ -59,7 +59,7 @@ void suite_inverter_avg(void) {
     UT_EQ_INT(init_both(false, pp, sp, 128000u, INVERTER_AVG_SUB_MAX, 0.0), INVERTER_AVG_OK);
     UT_EQ_INT(inv_q.n_sub, 64);
     UT_EQ_INT(inv_f.n_sub, 64);
-    suite_inverter_qs();
+    suite_inverter_quasi_static();
 }
 
 /* ---- The quasi-static stage ---------------------------------------------- */
@@ -69,8 +69,8 @@ void suite_inverter_avg(void) {
 #define QS_G 1.67    /* [S] about the pack's companion */
 #define QS_B 1008.0  /* [A] e = b / G = 603.6 V */
 
-static inverter_qs_q qs_q;
-static inverter_qs_f32 qs_f;
+static inverter_quasi_static_q qs_q;
+static inverter_quasi_static_f32 qs_f;
 
 static double qs_v_q(int32_t x) { return (double)x / 268435456.0 * 1024.0; }
 
@@ -80,50 +80,51 @@ static void qs_command(float m) {
     pwm_command_inc_f32(&qs_f.mod, m, 0u);
 }
 
-static void suite_inverter_qs(void) {
+static void suite_inverter_quasi_static(void) {
     const pwm_params *pp = &pwm_params_default;
-    inverter_qs_bus_q bq;
-    inverter_qs_bus_f32 bf;
+    inverter_quasi_static_bus_q bq;
+    inverter_quasi_static_bus_f32 bf;
 
     UT_TEST("quasi-static init, both twins: NULL is ERR_NULL, a 50 ns frame ERR_PWM; the bus "
             "starts clamped to [0, 1023] V");
-    UT_EQ_INT(inverter_qs_init_q(NULL, pp, QS_FRAME_NS, 600.0), INVERTER_AVG_ERR_NULL);
-    UT_EQ_INT(inverter_qs_init_f32(&qs_f, NULL, QS_FRAME_NS, 600.0), INVERTER_AVG_ERR_NULL);
-    UT_EQ_INT(inverter_qs_init_q(&qs_q, pp, 50u, 600.0), INVERTER_AVG_ERR_PWM);
-    UT_EQ_INT(inverter_qs_init_f32(&qs_f, pp, 50u, 600.0), INVERTER_AVG_ERR_PWM);
-    UT_EQ_INT(inverter_qs_init_q(&qs_q, pp, QS_FRAME_NS, -5.0), INVERTER_AVG_OK);
+    UT_EQ_INT(inverter_quasi_static_init_q(NULL, pp, QS_FRAME_NS, 600.0), INVERTER_AVG_ERR_NULL);
+    UT_EQ_INT(inverter_quasi_static_init_f32(&qs_f, NULL, QS_FRAME_NS, 600.0),
+              INVERTER_AVG_ERR_NULL);
+    UT_EQ_INT(inverter_quasi_static_init_q(&qs_q, pp, 50u, 600.0), INVERTER_AVG_ERR_PWM);
+    UT_EQ_INT(inverter_quasi_static_init_f32(&qs_f, pp, 50u, 600.0), INVERTER_AVG_ERR_PWM);
+    UT_EQ_INT(inverter_quasi_static_init_q(&qs_q, pp, QS_FRAME_NS, -5.0), INVERTER_AVG_OK);
     UT_EQ_INT(qs_q.v_dc, 0);
-    UT_EQ_INT(inverter_qs_init_f32(&qs_f, pp, QS_FRAME_NS, 2000.0), INVERTER_AVG_OK);
+    UT_EQ_INT(inverter_quasi_static_init_f32(&qs_f, pp, QS_FRAME_NS, 2000.0), INVERTER_AVG_OK);
     UT_NEAR((double)qs_f.v_dc, 1023.0, 0.0);
 
     UT_TEST("bus constants, both twins: alpha = 1 - exp(-T G / C), beta = alpha / G, e = b / G "
             "at 800 us; open (G = 0): alpha 0, beta T / C; a negative G and e above 1023 V count");
-    UT_EQ_INT(inverter_qs_battery_q(&qs_q, QS_C_DC, QS_G, QS_B, &bq), 0);
-    UT_EQ_INT(inverter_qs_battery_f32(&qs_f, QS_C_DC, QS_G, QS_B, &bf), 0);
+    UT_EQ_INT(inverter_quasi_static_battery_q(&qs_q, QS_C_DC, QS_G, QS_B, &bq), 0);
+    UT_EQ_INT(inverter_quasi_static_battery_f32(&qs_f, QS_C_DC, QS_G, QS_B, &bf), 0);
     const double alpha = 1.0 - math_exp_f64(-800e-6 * QS_G / QS_C_DC);
     UT_NEAR((double)bq.alpha / 2147483648.0, alpha, 1e-9);
     UT_NEAR((double)bf.alpha, alpha, 1e-7);
     UT_NEAR((double)bq.beta / 16777216.0 * 4.0, alpha / QS_G, 1e-6);
     UT_NEAR((double)bf.beta_ohm, alpha / QS_G, 1e-6);
     UT_NEAR(qs_v_q(bq.e), QS_B / QS_G, 1e-5);
-    UT_EQ_INT(inverter_qs_battery_f32(&qs_f, QS_C_DC, 0.0, 0.0, &bf), 0);
+    UT_EQ_INT(inverter_quasi_static_battery_f32(&qs_f, QS_C_DC, 0.0, 0.0, &bf), 0);
     UT_NEAR((double)bf.alpha, 0.0, 0.0);
     UT_NEAR((double)bf.beta_ohm, 800e-6 / QS_C_DC, 1e-6);
-    UT_EQ_INT(inverter_qs_battery_q(&qs_q, QS_C_DC, -1.0, 0.0, &bq), 1);
+    UT_EQ_INT(inverter_quasi_static_battery_q(&qs_q, QS_C_DC, -1.0, 0.0, &bq), 1);
     UT_EQ_INT(bq.alpha, 0);
-    UT_EQ_INT(inverter_qs_battery_q(&qs_q, QS_C_DC, 1.0, 2000.0, &bq), 1);
+    UT_EQ_INT(inverter_quasi_static_battery_q(&qs_q, QS_C_DC, 1.0, 2000.0, &bq), 1);
     UT_NEAR(qs_v_q(bq.e), 1023.0, 1e-5);
 
     UT_TEST("step, both twins, with no load current: the bus approaches e by (1 - alpha) per "
             "frame from 500 V; m = 0 gives zero terminal voltages");
-    UT_EQ_INT(inverter_qs_init_q(&qs_q, pp, QS_FRAME_NS, 500.0), INVERTER_AVG_OK);
-    UT_EQ_INT(inverter_qs_init_f32(&qs_f, pp, QS_FRAME_NS, 500.0), INVERTER_AVG_OK);
-    (void)inverter_qs_battery_q(&qs_q, QS_C_DC, QS_G, QS_B, &bq);
-    (void)inverter_qs_battery_f32(&qs_f, QS_C_DC, QS_G, QS_B, &bf);
+    UT_EQ_INT(inverter_quasi_static_init_q(&qs_q, pp, QS_FRAME_NS, 500.0), INVERTER_AVG_OK);
+    UT_EQ_INT(inverter_quasi_static_init_f32(&qs_f, pp, QS_FRAME_NS, 500.0), INVERTER_AVG_OK);
+    (void)inverter_quasi_static_battery_q(&qs_q, QS_C_DC, QS_G, QS_B, &bq);
+    (void)inverter_quasi_static_battery_f32(&qs_f, QS_C_DC, QS_G, QS_B, &bf);
     double v_ref = 500.0;
     for (int k = 0; k < 3; k++) {
-        inverter_qs_step_q(&qs_q, &bq, 0, 0);
-        inverter_qs_step_f32(&qs_f, &bf, 0.0f, 0.0f);
+        inverter_quasi_static_step_q(&qs_q, &bq, 0, 0);
+        inverter_quasi_static_step_f32(&qs_f, &bf, 0.0f, 0.0f);
         v_ref += alpha * (QS_B / QS_G - v_ref);
         UT_NEAR(qs_v_q(qs_q.v_dc), v_ref, 1e-4);
         UT_NEAR((double)qs_f.v_dc, v_ref, 1e-3);
@@ -137,8 +138,8 @@ static void suite_inverter_qs(void) {
     qs_command(1.0f);
     const int32_t i50 = (int32_t)(50.0 / 256.0 * 268435456.0);
     for (int k = 0; k < 40; k++) {
-        inverter_qs_step_q(&qs_q, &bq, 0, -i50);
-        inverter_qs_step_f32(&qs_f, &bf, 0.0f, -50.0f);
+        inverter_quasi_static_step_q(&qs_q, &bq, 0, -i50);
+        inverter_quasi_static_step_f32(&qs_f, &bf, 0.0f, -50.0f);
     }
     const double i_dc = 25.0 * 1.7320508075688772;
     const double v_set = QS_B / QS_G - i_dc / QS_G;
@@ -149,11 +150,11 @@ static void suite_inverter_qs(void) {
     UT_NEAR((double)qs_f.u[1], -0.25 * 1.7320508075688772 * (double)qs_f.v_dc, 2e-3);
     UT_NEAR((double)qs_f.v_dc * (double)qs_f.i_dc, (double)qs_f.u[1] * -50.0 +
             (double)(-qs_f.u[0] - qs_f.u[1]) * 50.0, 0.05);
-    (void)inverter_qs_battery_q(&qs_q, QS_C_DC, 0.0, 0.0, &bq);
-    (void)inverter_qs_battery_f32(&qs_f, QS_C_DC, 0.0, 0.0, &bf);
+    (void)inverter_quasi_static_battery_q(&qs_q, QS_C_DC, 0.0, 0.0, &bq);
+    (void)inverter_quasi_static_battery_f32(&qs_f, QS_C_DC, 0.0, 0.0, &bf);
     const double v0 = (double)qs_f.v_dc;
-    inverter_qs_step_q(&qs_q, &bq, 0, -i50);
-    inverter_qs_step_f32(&qs_f, &bf, 0.0f, -50.0f);
+    inverter_quasi_static_step_q(&qs_q, &bq, 0, -i50);
+    inverter_quasi_static_step_f32(&qs_f, &bf, 0.0f, -50.0f);
     UT_NEAR((double)qs_f.v_dc, v0 - 800e-6 * i_dc / QS_C_DC, 2e-3);
     UT_NEAR(qs_v_q(qs_q.v_dc), v0 - 800e-6 * i_dc / QS_C_DC, 2e-2);
     UT_EQ_INT(qs_q.sat_count, 0);

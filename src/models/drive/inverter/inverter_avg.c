@@ -92,12 +92,12 @@ void inverter_avg_step_f32(inverter_avg_f32 *inv, const power_stage_in_f32 *in) 
 /* ---- The quasi-static stage --------------------------------------------- */
 
 /* [0, 1024) V: the fixed twin's range for the bus, on both twins. */
-static double inverter_qs_clamp_v0(double v) {
+static double inverter_quasi_static_clamp_v0(double v) {
     return (v > 0.0) ? ((v < 1023.0) ? v : 1023.0) : 0.0;
 }
 
-inverter_avg_status inverter_qs_init_q(inverter_qs_q *inv, const pwm_params *pp,
-                                       uint32_t frame_ns, double v_dc0_v) {
+inverter_avg_status inverter_quasi_static_init_q(inverter_quasi_static_q *inv, const pwm_params *pp,
+                                                 uint32_t frame_ns, double v_dc0_v) {
     pwm_params mode;
     if (inv == NULL || pp == NULL) {
         return INVERTER_AVG_ERR_NULL;
@@ -107,7 +107,7 @@ inverter_avg_status inverter_qs_init_q(inverter_qs_q *inv, const pwm_params *pp,
     if (pwm_init_q(&inv->mod, &mode, frame_ns) != PWM_OK) {
         return INVERTER_AVG_ERR_PWM;
     }
-    const double v_q28 = inverter_qs_clamp_v0(v_dc0_v) / 1024.0 * 268435456.0 + 0.5;
+    const double v_q28 = inverter_quasi_static_clamp_v0(v_dc0_v) / 1024.0 * 268435456.0 + 0.5;
     inv->frame_ns = frame_ns;
     inv->v_dc = (int32_t)v_q28;
     inv->u[0] = 0;
@@ -117,8 +117,9 @@ inverter_avg_status inverter_qs_init_q(inverter_qs_q *inv, const pwm_params *pp,
     return INVERTER_AVG_OK;
 }
 
-inverter_avg_status inverter_qs_init_f32(inverter_qs_f32 *inv, const pwm_params *pp,
-                                         uint32_t frame_ns, double v_dc0_v) {
+inverter_avg_status inverter_quasi_static_init_f32(inverter_quasi_static_f32 *inv,
+                                                   const pwm_params *pp, uint32_t frame_ns,
+                                                   double v_dc0_v) {
     pwm_params mode;
     if (inv == NULL || pp == NULL) {
         return INVERTER_AVG_ERR_NULL;
@@ -129,7 +130,7 @@ inverter_avg_status inverter_qs_init_f32(inverter_qs_f32 *inv, const pwm_params 
         return INVERTER_AVG_ERR_PWM;
     }
     inv->frame_ns = frame_ns;
-    inv->v_dc = (float)inverter_qs_clamp_v0(v_dc0_v);
+    inv->v_dc = (float)inverter_quasi_static_clamp_v0(v_dc0_v);
     inv->u[0] = 0.0f;
     inv->u[1] = 0.0f;
     inv->i_dc = 0.0f;
@@ -142,8 +143,9 @@ inverter_avg_status inverter_qs_init_f32(inverter_qs_f32 *inv, const pwm_params 
  * [0, 1023] V), alpha, beta [ohm]; returns the clamps. A capacitance that
  * is not positive and finite gives the settled bus (alpha 1, beta 1 / G).
  */
-static uint32_t inverter_qs_battery_si(uint32_t frame_ns, double c_dc_f, double g_s, double b_a,
-                                       double *e, double *alpha, double *beta) {
+static uint32_t inverter_quasi_static_battery_si(uint32_t frame_ns, double c_dc_f, double g_s,
+                                                 double b_a, double *e, double *alpha,
+                                                 double *beta) {
     const double t = 1e-9 * (double)frame_ns;
     const bool cap = (c_dc_f > 0.0) && (c_dc_f < 1e300);
     uint32_t n = 0u;
@@ -171,12 +173,13 @@ static uint32_t inverter_qs_battery_si(uint32_t frame_ns, double c_dc_f, double 
     return n;
 }
 
-uint32_t inverter_qs_battery_q(const inverter_qs_q *inv, double c_dc_f, double g_s, double b_a,
-                               inverter_qs_bus_q *out) {
+uint32_t inverter_quasi_static_battery_q(const inverter_quasi_static_q *inv, double c_dc_f,
+                                         double g_s, double b_a, inverter_quasi_static_bus_q *out) {
     double e;
     double alpha;
     double beta;
-    uint32_t n = inverter_qs_battery_si(inv->frame_ns, c_dc_f, g_s, b_a, &e, &alpha, &beta);
+    uint32_t n =
+        inverter_quasi_static_battery_si(inv->frame_ns, c_dc_f, g_s, b_a, &e, &alpha, &beta);
     /* Per unit: volts of 1024 V per ampere of 256 A is ohms / 4; Q24 below 128. */
     double beta_pu = beta * 0.25 * 16777216.0;
     if (beta_pu > 2147483520.0) {
@@ -192,12 +195,14 @@ uint32_t inverter_qs_battery_q(const inverter_qs_q *inv, double c_dc_f, double g
     return n;
 }
 
-uint32_t inverter_qs_battery_f32(const inverter_qs_f32 *inv, double c_dc_f, double g_s,
-                                 double b_a, inverter_qs_bus_f32 *out) {
+uint32_t inverter_quasi_static_battery_f32(const inverter_quasi_static_f32 *inv, double c_dc_f,
+                                           double g_s, double b_a,
+                                           inverter_quasi_static_bus_f32 *out) {
     double e;
     double alpha;
     double beta;
-    uint32_t n = inverter_qs_battery_si(inv->frame_ns, c_dc_f, g_s, b_a, &e, &alpha, &beta);
+    uint32_t n =
+        inverter_quasi_static_battery_si(inv->frame_ns, c_dc_f, g_s, b_a, &e, &alpha, &beta);
     if (beta > 512.0) {
         beta = 512.0;
         n++;
@@ -215,7 +220,7 @@ uint32_t inverter_qs_battery_f32(const inverter_qs_f32 *inv, double c_dc_f, doub
  * (exact for a steady rotation). Q3.28 currents of at most 1 per unit
  * times Q15 or Q31 constants stay far inside 64 bits.
  */
-static void inverter_qs_mid_q(uint32_t half, int32_t *i_a, int32_t *i_b) {
+static void inverter_quasi_static_mid_q(uint32_t half, int32_t *i_a, int32_t *i_b) {
     const int64_t c = wt_cos_q15(half);
     const int64_t s = wt_sin_q15(half);
     const int64_t a = *i_a;
@@ -233,15 +238,16 @@ static void inverter_qs_mid_q(uint32_t half, int32_t *i_a, int32_t *i_b) {
  * and the bus clamps to +-1 per unit (counted); then the phase voltages
  * from the settled bus.
  */
-void inverter_qs_step_q(inverter_qs_q *inv, const inverter_qs_bus_q *bat, int32_t i_a,
-                        int32_t i_b) {
+void inverter_quasi_static_step_q(inverter_quasi_static_q *inv,
+                                  const inverter_quasi_static_bus_q *bat, int32_t i_a,
+                                  int32_t i_b) {
     pwm_out_q d;
     int32_t u_a;
     int32_t u_b;
     uint32_t sat = inv->sat_count;
     int32_t m_a = i_a;
     int32_t m_b = i_b;
-    inverter_qs_mid_q(inv->mod.half_inc_s, &m_a, &m_b);
+    inverter_quasi_static_mid_q(inv->mod.half_inc_s, &m_a, &m_b);
     pwm_average_q(&inv->mod, &d);
     const int32_t i_dc = ps_dc_current_q(d.duty, 2 * m_a, 2 * m_b);
     const int64_t dv = fp_shr_round_i64((int64_t)(bat->e - inv->v_dc) * bat->alpha, 31u) -
@@ -255,8 +261,9 @@ void inverter_qs_step_q(inverter_qs_q *inv, const inverter_qs_bus_q *bat, int32_
     inv->sat_count = sat;
 }
 
-void inverter_qs_step_f32(inverter_qs_f32 *inv, const inverter_qs_bus_f32 *bat, float i_a,
-                          float i_b) {
+void inverter_quasi_static_step_f32(inverter_quasi_static_f32 *inv,
+                                    const inverter_quasi_static_bus_f32 *bat, float i_a,
+                                    float i_b) {
     pwm_out_f32 d;
     float u_a;
     float u_b;

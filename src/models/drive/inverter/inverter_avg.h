@@ -8,7 +8,7 @@
  *     switching stage (power_stage.h), runnable at the motor's 100 us
  *     frame with substeps (below); the stage-level comparison with the
  *     switching model (test_power_stage.c, docs/drive_power.md).
- *   - inverter_qs_*: the quasi-static stage the executive's averaged layer
+ *   - inverter_quasi_static_*: the quasi-static stage the executive's averaged layer
  *     runs with the motor at the controller's 800 us frame (further down).
  *
  * Step. One call advances one frame of n_sub equal substeps; each substep
@@ -123,7 +123,7 @@ typedef struct {
     int32_t e;        /* [V] b / G, Q3.28 of 1024 V, in [0, 1) */
     q31_t alpha;      /* [-] 1 - exp(-T G / C_dc), Q31 in [0, 1) */
     int32_t beta;     /* [ohm] alpha / G (T / C_dc when open), Q24 per unit of 4 ohm */
-} inverter_qs_bus_q;
+} inverter_quasi_static_bus_q;
 
 typedef struct {
     pwm_q mod;          /* references only (its carrier is not used) */
@@ -132,14 +132,14 @@ typedef struct {
     int32_t u[2];       /* [V] terminal voltages a, b, frame means, Q3.28 of 1024 V */
     int32_t i_dc;       /* [A] inverter input current, Q3.28 of 256 A */
     uint32_t sat_count; /* DC-link voltage clamped to +-1024 V, companion values clamped */
-} inverter_qs_q;
+} inverter_quasi_static_q;
 
 /* Float twin, SI. */
 typedef struct {
     float e_v;        /* [V] b / G */
     float alpha;      /* [-] */
     float beta_ohm;   /* [ohm] */
-} inverter_qs_bus_f32;
+} inverter_quasi_static_bus_f32;
 
 typedef struct {
     pwm_f32 mod;
@@ -148,7 +148,7 @@ typedef struct {
     float u[2];         /* [V] */
     float i_dc;         /* [A] */
     uint32_t sat_count; /* DC-link voltage clamped to +-1024 V */
-} inverter_qs_f32;
+} inverter_quasi_static_f32;
 
 /*
  * Initialises the modulator (mode PWM_AVERAGED whatever pp says) at the
@@ -156,10 +156,11 @@ typedef struct {
  * [0, 1024) V), terminals at zero. ERR_NULL, or ERR_PWM for a frame the
  * modulator refuses.
  */
-inverter_avg_status inverter_qs_init_q(inverter_qs_q *inv, const pwm_params *pp,
-                                       uint32_t frame_ns, double v_dc0_v);
-inverter_avg_status inverter_qs_init_f32(inverter_qs_f32 *inv, const pwm_params *pp,
-                                         uint32_t frame_ns, double v_dc0_v);
+inverter_avg_status inverter_quasi_static_init_q(inverter_quasi_static_q *inv, const pwm_params *pp,
+                                                 uint32_t frame_ns, double v_dc0_v);
+inverter_avg_status inverter_quasi_static_init_f32(inverter_quasi_static_f32 *inv,
+                                                   const pwm_params *pp, uint32_t frame_ns,
+                                                   double v_dc0_v);
 
 /*
  * The DC-link update's constants for the battery companion i = G v - b
@@ -169,10 +170,11 @@ inverter_avg_status inverter_qs_init_f32(inverter_qs_f32 *inv, const pwm_params 
  * or non-finite G counts one clamp). Returns the clamps: e to [0, 1024) V,
  * beta below 128 per unit (512 ohm).
  */
-uint32_t inverter_qs_battery_q(const inverter_qs_q *inv, double c_dc_f, double g_s, double b_a,
-                               inverter_qs_bus_q *out);
-uint32_t inverter_qs_battery_f32(const inverter_qs_f32 *inv, double c_dc_f, double g_s,
-                                 double b_a, inverter_qs_bus_f32 *out);
+uint32_t inverter_quasi_static_battery_q(const inverter_quasi_static_q *inv, double c_dc_f,
+                                         double g_s, double b_a, inverter_quasi_static_bus_q *out);
+uint32_t inverter_quasi_static_battery_f32(const inverter_quasi_static_f32 *inv, double c_dc_f,
+                                           double g_s, double b_a,
+                                           inverter_quasi_static_bus_f32 *out);
 
 /*
  * One frame: the duties (pwm_average), i_dc from the motor currents i_a,
@@ -181,9 +183,9 @@ uint32_t inverter_qs_battery_f32(const inverter_qs_f32 *inv, double c_dc_f, doub
  * voltages. Integer only,
  * no division, in the fixed twin; total (the bus clamps and counts).
  */
-void inverter_qs_step_q(inverter_qs_q *inv, const inverter_qs_bus_q *bat, int32_t i_a,
-                        int32_t i_b);
-void inverter_qs_step_f32(inverter_qs_f32 *inv, const inverter_qs_bus_f32 *bat, float i_a,
-                          float i_b);
+void inverter_quasi_static_step_q(inverter_quasi_static_q *inv,
+                                  const inverter_quasi_static_bus_q *bat, int32_t i_a, int32_t i_b);
+void inverter_quasi_static_step_f32(inverter_quasi_static_f32 *inv,
+                                    const inverter_quasi_static_bus_f32 *bat, float i_a, float i_b);
 
 #endif /* UUV_INVERTER_AVG_H */
