@@ -66,6 +66,24 @@ bool ut_text_equal(const char *a, const char *b) {
     return a[i] == b[i];
 }
 
+uint32_t ut_rand_u32(uint32_t *state) {
+    uint32_t x = *state;
+    x ^= x << 13;
+    x ^= x >> 17;
+    x ^= x << 5;
+    *state = x;
+    return x;
+}
+
+int32_t ut_rand_within(uint32_t *state, int32_t lim) {
+    return (int32_t)(ut_rand_u32(state) % (2u * (uint32_t)lim + 1u)) - lim;
+}
+
+uint64_t ut_rand_u64(uint64_t *state) {
+    *state = *state * 6364136223846793005u + 1442695040888963407u;
+    return *state;
+}
+
 bool ut_check(bool ok, const char *file, int line, const char *expr) {
     if (!ok) {
         ut_fail_header(file, line);

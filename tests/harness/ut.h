@@ -30,6 +30,15 @@ void ut_info(const char *format, ...) __attribute__((format(printf, 1, 2)));
 size_t ut_text_len(const char *s);
 bool ut_text_equal(const char *a, const char *b);
 
+/*
+ * Deterministic test operands, the same on every host and target: a 32-bit
+ * xorshift (13, 17, 5; state must not be 0), a draw uniform in [-lim, lim]
+ * from it (0 <= lim < 2^31), and a 64-bit LCG (Knuth's MMIX constants).
+ */
+uint32_t ut_rand_u32(uint32_t *state);
+int32_t ut_rand_within(uint32_t *state, int32_t lim);
+uint64_t ut_rand_u64(uint64_t *state);
+
 /* Ends the run: prints "N passed, N failed" and returns the failed count. */
 unsigned ut_finish(void);
 

@@ -31,17 +31,10 @@ static drive_segment ref, ker;
 static propeller_model prop;
 static uint32_t rng = 0x2545F491u;
 
-static uint32_t next(void) {
-    rng ^= rng << 13;
-    rng ^= rng >> 17;
-    rng ^= rng << 5;
-    return rng;
-}
+static uint32_t next(void) { return ut_rand_u32(&rng); }
 
 /* Uniform in [-lim, lim]. */
-static int32_t within(int32_t lim) {
-    return (int32_t)(next() % (2u * (uint32_t)lim + 1u)) - lim;
-}
+static int32_t within(int32_t lim) { return ut_rand_within(&rng, lim); }
 
 /* Byte copies and comparison of the whole drive, padding included. */
 static void copy_all(drive_segment *dst, const drive_segment *src) {

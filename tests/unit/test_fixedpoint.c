@@ -51,10 +51,7 @@ static int64_t ref_clamp(int64_t x, int64_t lo, int64_t hi) {
 /* A small deterministic generator of test operands (64-bit LCG). */
 static uint64_t lcg_state;
 
-static uint64_t lcg_next(void) {
-    lcg_state = lcg_state * 6364136223846793005u + 1442695040888963407u;
-    return lcg_state;
-}
+static uint64_t lcg_next(void) { return ut_rand_u64(&lcg_state); }
 
 static const int32_t edge_i32[] = {
     INT32_MIN, INT32_MIN + 1, -1073741824, -65537, -65536, -32769, -32768, -16385, -16384, -3,

@@ -63,11 +63,8 @@ static bool same_f32(float a, float b) { return math_bits_f32(a) == math_bits_f3
 static bool canonical_nan_f64(double x) { return math_bits_f64(x) == 0x7ff8000000000000u; }
 static bool canonical_nan_f32(float x) { return math_bits_f32(x) == 0x7fc00000u; }
 
-/* A small deterministic generator (64-bit LCG, Knuth's MMIX constants). */
-static uint64_t lcg_next(uint64_t *state) {
-    *state = *state * 6364136223846793005u + 1442695040888963407u;
-    return *state;
-}
+/* A small deterministic generator (ut.h). */
+static uint64_t lcg_next(uint64_t *state) { return ut_rand_u64(state); }
 
 /* ---- square root ---------------------------------------------------------- */
 

@@ -631,16 +631,9 @@ static void test_rt_setup(void) {
  */
 static uint32_t rt_rng = 0x9E3779B9u;
 
-static uint32_t rt_next(void) {
-    rt_rng ^= rt_rng << 13;
-    rt_rng ^= rt_rng >> 17;
-    rt_rng ^= rt_rng << 5;
-    return rt_rng;
-}
+static uint32_t rt_next(void) { return ut_rand_u32(&rt_rng); }
 
-static int32_t rt_within(int32_t lim) {
-    return (int32_t)(rt_next() % (2u * (uint32_t)lim + 1u)) - lim;
-}
+static int32_t rt_within(int32_t lim) { return ut_rand_within(&rt_rng, lim); }
 
 static void test_rt_plan(void) {
     static const uint32_t ns[] = {1u, 7u, 25u, 50u, 51u, 99u, 100u, 400u};
