@@ -12,10 +12,7 @@ set -u
 case $1 in /*) uuvsim=$1 ;; *) uuvsim=$(pwd)/$1 ;; esac
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
-pass=0
-fail=0
-ok() { pass=$((pass + 1)); echo "  ok    $1"; }
-ko() { fail=$((fail + 1)); echo "  FAIL  $1"; sed 's/^/        /' "$tmp/err" 2>/dev/null | head -n 5; }
+. "${0%/*}/lib.sh"
 check() { if [ "$2" = 0 ]; then ok "$1"; else ko "$1"; fi; }
 
 cd "$tmp" || exit 1
@@ -101,5 +98,4 @@ refused "a list line that starts with an option (file and line)" "optfirst.txt:2
     --out bad --list optfirst.txt
 refused "two runs of one name" "both named 'start'" --out bad --list twice.txt
 
-echo "$pass passed, $fail failed"
-[ "$fail" -eq 0 ]
+finish

@@ -12,10 +12,7 @@ set -u
 decode=$1
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
-pass=0
-fail=0
-ok() { pass=$((pass + 1)); echo "  ok    $1"; }
-ko() { fail=$((fail + 1)); echo "  FAIL  $1"; sed 's/^/        /' "$tmp/err" | head -n 5; }
+. "${0%/*}/lib.sh"
 version=$(sed -n 's/^#define TLM_VERSION \([0-9]*\)u.*/\1/p' src/telemetry.h)
 
 # stream.py OUT STATE X0 [OVERRUNS]: START (vessel plant, machine name with specials), one
@@ -88,5 +85,4 @@ if [ $? -eq 2 ] && grep -q '^uuvsim-decode: --json .* are the same file' "$tmp/e
     ok "an output equal to the input: refused by the decoder, in its name"
 else ko "an output equal to the input: refused by the decoder"; fi
 
-echo "$pass passed, $fail failed"
-[ $fail -eq 0 ]
+finish

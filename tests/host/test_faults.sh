@@ -13,8 +13,7 @@ set -u
 uuvsim=$1
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
-pass=0
-fail=0
+. "${0%/*}/lib.sh"
 
 # run FAULTS [RPM [INVERTER]]: writes $tmp/s.json and $tmp/r.csv (FAULTS: one or more
 # fault commands, all at 2 s)
@@ -136,5 +135,4 @@ while [ $# -gt 1 ]; do
         matrix "$a $b"
     done
 done
-echo "$pass passed, $fail failed"
-[ "$fail" -eq 0 ]
+finish

@@ -13,8 +13,7 @@ set -u
 uuvsim=$1
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
-pass=0
-fail=0
+. "${0%/*}/lib.sh"
 scn=scenarios/bench_2s.scn
 
 result() { # NAME WHY (empty: passed)
@@ -51,8 +50,7 @@ if "$uuvsim" --version | grep -q 'fixed build'; then
     "$uuvsim" --scenario "$scn" --duration 0.2 --fast-path exact --quiet >"$tmp/o" 2>&1
     st=$?
     result "fixed build: --fast-path exact runs" "$([ $st -eq 0 ] || echo "exit status $st")"
-    echo "$pass passed, $fail failed"
-    [ $fail -eq 0 ]
+    finish
     exit
 fi
 
@@ -119,5 +117,4 @@ why=""
 [ "$a" = "$b" ] || why="${why:+$why; }leaps $a in 0.2 s, $b in 0.6 s"
 result "fault: leaps before it ($a), none after" "$why"
 
-echo "$pass passed, $fail failed"
-[ $fail -eq 0 ]
+finish

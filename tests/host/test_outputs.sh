@@ -12,10 +12,7 @@ set -u
 case $1 in /*) uuvsim=$1 ;; *) uuvsim=$(pwd)/$1 ;; esac
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
-pass=0
-fail=0
-ok() { pass=$((pass + 1)); echo "  ok    $1"; }
-ko() { fail=$((fail + 1)); echo "  FAIL  $1"; sed 's/^/        /' "$tmp/err" 2>/dev/null | head -n 5; }
+. "${0%/*}/lib.sh"
 
 d="$tmp/d"
 mkdir -p "$d"
@@ -137,5 +134,4 @@ if [ -w /dev/full ]; then
     else ko "stdout on a full device: the CSV of the run is not committed"; fi
 fi
 
-echo "$pass passed, $fail failed"
-[ $fail -eq 0 ]
+finish

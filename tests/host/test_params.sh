@@ -8,13 +8,10 @@ set -u
 uuvsim=$1
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
-pass=0
-fail=0
-ok() { pass=$((pass + 1)); echo "  ok    $1"; }
-no() { fail=$((fail + 1)); echo "  FAIL  $1"; [ -f "$tmp/err" ] && sed 's/^/        /' "$tmp/err" | tail -n 5; }
+. "${0%/*}/lib.sh"
 check() { # name, then a command that must succeed
     name=$1; shift
-    if "$@" >"$tmp/out" 2>"$tmp/err"; then ok "$name"; else no "$name"; fi
+    if "$@" >"$tmp/out" 2>"$tmp/err"; then ok "$name"; else ko "$name"; fi
 }
 # expect_error NAME PATTERN ARGS...: exit 2, PATTERN on stderr, nothing on stdout, no
 # $tmp/bad.csv (the runs that name it as their --csv must not leave it).
@@ -26,7 +23,7 @@ expect_error() {
        [ ! -e "$tmp/bad.csv" ]; then
         ok "$name"
     else
-        no "$name (exit $status)"
+        ko "$name (exit $status)"
     fi
 }
 # jget KEY FILE: the first number after "KEY": in a JSON summary.
@@ -174,7 +171,7 @@ check "the speed gain follows the inertia (Kp = w_c J / K_T: 0.0758 Hz/(rad/s))"
     ratio_in "$kp1" 0.0758 0.995 1.005
 check "--set control.kp_speed=auto derives it for the default motor (0.0398)" sh -c \
     "'$uuvsim' params --set control.kp_speed=auto | awk '\$1 == \"control.kp_speed\" { exit !(\$2 > 0.0397 && \$2 < 0.0399) }'"
-[ "$kp0" = 0.04 ] && ok "the default set keeps its tuned gain 0.04" || no "default kp_speed $kp0"
+[ "$kp0" = 0.04 ] && ok "the default set keeps its tuned gain 0.04" || ko "default kp_speed $kp0"
 
 # ---- Bad input ------------------------------------------------------------
 bad() { printf "$1" >"$tmp/bad.params"; }
@@ -237,5 +234,4 @@ else
         "$uuvsim" --set control.i_max=250 --scenario $scn --duration 0.2 --quiet
 fi
 
-echo "$pass passed, $fail failed"
-[ $fail -eq 0 ]
+finish

@@ -18,27 +18,25 @@ duration=${7:-0.5}; shift_n=${8:-2}
 scenario=scenarios/default.scn
 here=$(dirname "$0")
 tools=$here/../../tools
-pass=0; fail=0
-ok() { echo "ok  : $1"; pass=$((pass + 1)); }
-bad() { echo "FAIL: $1"; fail=$((fail + 1)); }
+. "${0%/*}/lib.sh"
 mkdir -p "$out" || exit 2
 
 # The desk, the multi-party run, the all-firmware run.
 "$uuvsim" --scenario "$scenario" --duration "$duration" --csv "$out/desk.csv" --quiet ||
-    bad "the desk run"
+    ko "the desk run"
 sh "$tools/qemu-party.sh" "$machine" "$party" "$uuvsim" "$scenario" "$duration" "$out/party" \
     "$shift_n" > "$out/party.log" 2>&1
 status=$?
 if [ $status -eq 0 ]; then
     ok "the multi-party run completed: $(grep 'slow frames exchanged' "$out/party.log")"
 else
-    bad "the multi-party run exited $status: $(tail -n 3 "$out/party.log")"
+    ko "the multi-party run exited $status: $(tail -n 3 "$out/party.log")"
 fi
 rows=$(($(wc -l < "$out/desk.csv") - 1))
 if cmp -s "$out/desk.csv" "$out/party/telemetry.csv"; then
     ok "its telemetry.csv is the desk's, byte for byte ($rows records, $(wc -c < "$out/desk.csv") bytes)"
 else
-    bad "its telemetry.csv differs from the desk's: $(cmp "$out/desk.csv" "$out/party/telemetry.csv" 2>&1)"
+    ko "its telemetry.csv differs from the desk's: $(cmp "$out/desk.csv" "$out/party/telemetry.csv" 2>&1)"
 fi
 sh "$tools/qemu-run.sh" "$machine" "$fw" "$scenario" "$duration" "$out/firmware" "$shift_n" \
     "$decode" > "$out/firmware.log" 2>&1
@@ -46,14 +44,14 @@ status=$?
 if [ $status -eq 0 ] && cmp -s "$out/firmware/telemetry.csv" "$out/party/telemetry.csv"; then
     ok "and the all-firmware run's (tools/qemu-run.sh at shift $shift_n), byte for byte"
 else
-    bad "the all-firmware run (exit $status) and the multi-party run differ: $(cmp "$out/firmware/telemetry.csv" "$out/party/telemetry.csv" 2>&1)"
+    ko "the all-firmware run (exit $status) and the multi-party run differ: $(cmp "$out/firmware/telemetry.csv" "$out/party/telemetry.csv" 2>&1)"
 fi
 
 # Faults cross the link too (LINK_DOWN's fault set, the protection's trip).
 printf 'duration %s\nat 0 n_rpm=1000\nat 0.2 dc_cap=0.5 current_offset=5\nat 0.3 leg_short=b\n' \
     "$duration" > "$out/faults.scn"
 "$uuvsim" --scenario "$out/faults.scn" --csv "$out/faults_desk.csv" --quiet ||
-    bad "the desk run with faults"
+    ko "the desk run with faults"
 # (At shift 0: a faulted drive leaves the real-time path, and its fast tick takes longer.)
 sh "$tools/qemu-party.sh" "$machine" "$party" "$uuvsim" "$out/faults.scn" "" "$out/faults" \
     0 > "$out/faults.log" 2>&1
@@ -62,7 +60,7 @@ trip=$(awk -F, 'NR > 1 { t = $NF } END { print t + 0 }' "$out/faults_desk.csv")
 if [ $status -eq 0 ] && [ "$trip" -ne 0 ] && cmp -s "$out/faults_desk.csv" "$out/faults/telemetry.csv"; then
     ok "with faults at 0.2 and 0.3 s (the leg short trips: trip $trip): byte for byte the desk's"
 else
-    bad "with faults: exit $status, trip $trip, $(cmp "$out/faults_desk.csv" "$out/faults/telemetry.csv" 2>&1)"
+    ko "with faults: exit $status, trip $trip, $(cmp "$out/faults_desk.csv" "$out/faults/telemetry.csv" 2>&1)"
 fi
 
 # failure NAME EXPECTED_TEXT HOST_OPTIONS...: the run must stop with exit status 2, the
@@ -77,7 +75,7 @@ failure() {
     if [ $status -eq 2 ] && [ -n "$msg" ] && [ ! -e "$dir/telemetry.csv" ]; then
         ok "$name ($*): exit 2, no CSV: $msg"
     else
-        bad "$name ($*): exit $status, message '$want' $( [ -n "$msg" ] || echo 'missing'):" \
+        ko "$name ($*): exit $status, message '$want' $( [ -n "$msg" ] || echo 'missing'):" \
             "$(tail -n 3 "$dir.log" | tr '\n' ' ')"
     fi
 }
@@ -87,5 +85,4 @@ failure "a corrupted frame from the drive" "frame 2 from the drive (LINK_UP of s
     --corrupt-up 2
 failure "a lost frame to the drive" "frame 1 from the host (the answer to slow frame 2): out of sequence" \
     --drop-down 1
-echo "$pass passed, $fail failed"
-[ "$fail" -eq 0 ]
+finish

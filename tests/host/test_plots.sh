@@ -10,26 +10,23 @@ set -u
 uuvsim=$1
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
-pass=0
-fail=0
+. "${0%/*}/lib.sh"
 
-ok() { pass=$((pass + 1)); echo "ok   $1"; }
-bad() { fail=$((fail + 1)); echo "FAIL $1: $2"; }
 
 if "$uuvsim" --quiet --scenario scenarios/default.scn --duration 31 --csv "$tmp/telemetry.csv" \
     --trace "$tmp/trace.csv" --trace-from 30 --trace-to 30.02 2>"$tmp/err"; then
     ok "31 s of the default mission with a 20 ms trace"
 else
-    bad "31 s of the default mission with a 20 ms trace" "$(cat "$tmp/err")"
+    ko "31 s of the default mission with a 20 ms trace" "$(cat "$tmp/err")"
 fi
 
 if ! command -v gnuplot >/dev/null 2>&1; then
-    bad "gnuplot" "not installed (make test installs it: tools/ensure-deps.sh)"
+    ko "gnuplot" "not installed (make test installs it: tools/ensure-deps.sh)"
 elif gnuplot -e "dir='$tmp'; scn='scenarios/default.scn'" tools/plots.gp >"$tmp/gp.out" 2>&1 &&
     [ ! -s "$tmp/gp.out" ]; then
     ok "tools/plots.gp runs without a message"
 else
-    bad "tools/plots.gp runs without a message" "$(head -5 "$tmp/gp.out")"
+    ko "tools/plots.gp runs without a message" "$(head -5 "$tmp/gp.out")"
 fi
 
 # The PNG signature's readable bytes, and a size no blank frame reaches
@@ -41,7 +38,7 @@ for p in trajectory plan depth speed shaft currents dc_link battery; do
     if [ "$size" -gt 15000 ] && [ "$(od -An -c -j1 -N3 "$f" | tr -d ' ')" = "PNG" ]; then
         ok "$p.png ($size bytes)"
     else
-        bad "$p.png" "missing, not a PNG, or $size bytes"
+        ko "$p.png" "missing, not a PNG, or $size bytes"
     fi
 done
 
@@ -51,8 +48,7 @@ if [ -f "$tmp/events.dat" ] && [ "$(wc -l <"$tmp/events.dat")" -eq 1 ] &&
     grep -q '^0,0,0,0,"n_rpm=1000 heading=0 depth=10"$' "$tmp/events.dat"; then
     ok "events: the scenario's commands placed at the records (events.dat)"
 else
-    bad "events" "$(cat "$tmp/events.dat" 2>/dev/null)"
+    ko "events" "$(cat "$tmp/events.dat" 2>/dev/null)"
 fi
 
-echo "$pass passed, $fail failed"
-[ "$fail" -eq 0 ]
+finish

@@ -8,8 +8,7 @@
 set -u
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
-pass=0
-fail=0
+. "${0%/*}/lib.sh"
 for sim in "$@"; do
     name=$(basename "$(dirname "$sim")")
     ASAN_OPTIONS=detect_leaks=1:abort_on_error=0 UBSAN_OPTIONS=print_stacktrace=1 \
@@ -30,5 +29,4 @@ for sim in "$@"; do
         fail=$((fail + 1)); echo "  FAIL  $name: ${why#; }"; head -n 30 "$tmp/stderr"
     fi
 done
-echo "$pass passed, $fail failed"
-[ $fail -eq 0 ]
+finish

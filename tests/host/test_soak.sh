@@ -19,11 +19,8 @@ uuvsim=$1
 duration=$2
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
-pass=0
-fail=0
+. "${0%/*}/lib.sh"
 
-ok() { pass=$((pass + 1)); echo "  ok    $1"; }
-ko() { fail=$((fail + 1)); echo "  FAIL  $1"; }
 
 # field NAME: a number from the summary
 field() {
@@ -78,5 +75,4 @@ else
         case $verdict in ok*) ok "$msg" ;; *) ko "$msg" ;; esac
     done
 fi
-echo "$pass passed, $fail failed"
-[ "$fail" -eq 0 ]
+finish

@@ -9,16 +9,13 @@ set -u
 uuvsim=$1
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
-pass=0
-fail=0
-ok() { pass=$((pass + 1)); echo "  ok    $1"; }
-no() { fail=$((fail + 1)); echo "  FAIL  $1"; [ -f "$tmp/err" ] && sed 's/^/        /' "$tmp/err" | tail -n 5; }
-check() { name=$1; shift; if "$@" >"$tmp/out" 2>"$tmp/err"; then ok "$name"; else no "$name"; fi; }
+. "${0%/*}/lib.sh"
+check() { name=$1; shift; if "$@" >"$tmp/out" 2>"$tmp/err"; then ok "$name"; else ko "$name"; fi; }
 expect_error() {
     name=$1; pattern=$2; shift 2
     "$@" >"$tmp/stdout" 2>"$tmp/err"
     status=$?
-    if [ $status -eq 2 ] && grep -qE -- "$pattern" "$tmp/err"; then ok "$name"; else no "$name (exit $status)"; fi
+    if [ $status -eq 2 ] && grep -qE -- "$pattern" "$tmp/err"; then ok "$name"; else ko "$name (exit $status)"; fi
 }
 
 cat >"$tmp/s.sweep" <<'EOF'
@@ -41,7 +38,7 @@ EOF
 
 check "sweep: 16 runs with -j 2" "$uuvsim" sweep "$tmp/s.sweep" --out "$tmp/full" -j 2
 rows=$(($(wc -l <"$tmp/full/results.csv") - 1))
-[ "$rows" -eq 16 ] && ok "results.csv: 16 rows" || no "results.csv: $rows rows"
+[ "$rows" -eq 16 ] && ok "results.csv: 16 rows" || ko "results.csv: $rows rows"
 check "results.csv: every run's number once, in order" sh -c \
     "tail -n +2 '$tmp/full/results.csv' | cut -d, -f1 | tr '\n' ' ' | grep -qx '0 1 2 3 4 5 6 7 8 9 10 11 12 13 14 15 '"
 check "results.csv: every run succeeded with its metrics" sh -c \
@@ -70,7 +67,7 @@ done
 done_rows=$(ls "$tmp/killed/runs" | grep -c '\.row$')
 [ "$done_rows" -ge 6 ] && [ "$done_rows" -lt 16 ] && [ ! -f "$tmp/killed/results.csv" ] &&
     ! kill -0 -$pid 2>/dev/null &&
-    ok "killed halfway: $done_rows of 16 rows, no results yet, no run left" || no "killed: $done_rows rows"
+    ok "killed halfway: $done_rows of 16 rows, no results yet, no run left" || ko "killed: $done_rows rows"
 check "resumed: the same command completes it" "$uuvsim" sweep "$tmp/s.sweep" --out "$tmp/killed" -j 2
 cp "$tmp/err" "$tmp/resume.err"
 check "resumed: it ran only the runs without a row" grep -q "$((16 - done_rows)) to run ($done_rows done before)" "$tmp/resume.err"
@@ -87,7 +84,7 @@ check "merged results.csv equals the single-process one" cmp "$tmp/full/results.
 check "merged results.json equals the single-process one" cmp "$tmp/full/results.json" "$tmp/merged/results.json"
 "$uuvsim" sweep-merge --out "$tmp/part" "$tmp/shard1" "$tmp/shard2" 2>"$tmp/err"
 [ $? -eq 1 ] && grep -q "5 of 16 runs are missing" "$tmp/err" && ok "a merge without a shard says how many runs are missing" ||
-    no "merge of two shards of three"
+    ko "merge of two shards of three"
 
 # The Slurm job array of tools/slurm-sweep.sh, its tasks run here one after the other.
 UUVSIM=$uuvsim sh tools/slurm-sweep.sh "$tmp/s.sweep" "$tmp/slurm" 2 1 >"$tmp/job.sh"
@@ -123,5 +120,4 @@ expect_error "--shard 4/3" "--shard: expected K/N" "$uuvsim" sweep "$tmp/s.sweep
 expect_error "another sweep in the same directory" "holds another sweep" \
     "$uuvsim" sweep "$tmp/f.sweep" --out "$tmp/full"
 
-echo "$pass passed, $fail failed"
-[ $fail -eq 0 ]
+finish

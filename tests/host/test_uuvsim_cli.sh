@@ -7,8 +7,7 @@ uuvsim=$1
 csvdiff=$2
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
-pass=0
-fail=0
+. "${0%/*}/lib.sh"
 check() { # name, then a command that must succeed
     name=$1; shift
     if "$@" >"$tmp/out" 2>&1; then
@@ -452,5 +451,4 @@ expect_error "error: a trace window after the end of the run" \
     "option --trace-from: 3 s is not before the end of the run \(2 s\)" \
     "$uuvsim" --scenario scenarios/bench_2s.scn --trace "$tmp/bad.csv" --trace-from 3
 
-echo "$pass passed, $fail failed"
-[ $fail -eq 0 ]
+finish

@@ -12,11 +12,8 @@ uuvsim=$1
 here=$(dirname "$0")
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
-pass=0
-fail=0
+. "${0%/*}/lib.sh"
 
-ok() { pass=$((pass + 1)); echo "ok   $1"; }
-bad() { fail=$((fail + 1)); echo "FAIL $1: $2"; }
 
 # expect_error WHAT MESSAGE-PART DIR: exit 2, the message, no page left behind.
 expect_error() {
@@ -26,7 +23,7 @@ expect_error() {
         [ -z "$(ls "$3" | grep "mission.html.partial")" ]; then
         ok "$1 (exit 2: $(head -c 110 "$tmp/err"))"
     else
-        bad "$1" "exit $status, message '$(head -c 200 "$tmp/err")'"
+        ko "$1" "exit $status, message '$(head -c 200 "$tmp/err")'"
     fi
 }
 
@@ -37,7 +34,7 @@ if "$uuvsim" --quiet --scenario tests/host/manual_mission.scn --duration 31 \
     --csv "$run/telemetry.csv" --summary "$run/summary.json" 2>"$tmp/err"; then
     ok "31 s of tests/host/manual_mission.scn"
 else
-    bad "31 s of tests/host/manual_mission.scn" "$(cat "$tmp/err")"
+    ko "31 s of tests/host/manual_mission.scn" "$(cat "$tmp/err")"
 fi
 # The summary lists the scenario's timed commands (the page marks them).
 # (31 s of the mission: the one at 0 s; the next comes at 40 s.)
@@ -45,14 +42,14 @@ if grep -q '^  "events": \[{"t_s": 0, "command": "n_rpm", "value": 1000}\],$' "$
 then
     ok "the summary lists the scenario's commands (events)"
 else
-    bad "the summary lists the scenario's commands" "$(grep '"events"' "$run/summary.json")"
+    ko "the summary lists the scenario's commands" "$(grep '"events"' "$run/summary.json")"
 fi
 start=$(date +%s%N)
 if "$uuvsim" view "$run" >"$tmp/out" 2>"$tmp/err" && [ -s "$run/mission.html" ]; then
     ms=$(( ($(date +%s%N) - start) / 1000000 ))
     ok "uuvsim view writes mission.html ($(wc -c <"$run/mission.html") bytes, $ms ms)"
 else
-    bad "uuvsim view writes mission.html" "$(cat "$tmp/err")"
+    ko "uuvsim view writes mission.html" "$(cat "$tmp/err")"
 fi
 # Self-contained: the run's rows and three.js are in it; nothing is fetched.
 rows=$(($(wc -l <"$run/telemetry.csv") - 1))
@@ -61,7 +58,7 @@ if grep -q 'REVISION="1' "$run/mission.html" &&
     ! grep -Eqi '(src|href)="(https?:|//)' "$run/mission.html"; then
     ok "the page holds three.js and the $rows rows, and loads nothing from elsewhere"
 else
-    bad "the page is self-contained" "three.js, rows or an outside reference"
+    ko "the page is self-contained" "three.js, rows or an outside reference"
 fi
 
 # Bad input.
@@ -94,14 +91,14 @@ if "$uuvsim" view >/dev/null 2>"$tmp/err"; [ $? -eq 2 ] && grep -q "expected exa
 then
     ok "error: uuvsim view without a folder"
 else
-    bad "error: uuvsim view without a folder" "$(cat "$tmp/err")"
+    ko "error: uuvsim view without a folder" "$(cat "$tmp/err")"
 fi
 if UUVSIM_THREE_JS="$tmp/nothree.js" "$uuvsim" view "$tmp/bad4/../run" >/dev/null 2>"$tmp/err"; then
-    bad "error: three.js missing" "exit 0"
+    ko "error: three.js missing" "exit 0"
 elif grep -q "apt-get install libjs-three" "$tmp/err"; then
     ok "error: three.js missing names the package (libjs-three)"
 else
-    bad "error: three.js missing" "$(cat "$tmp/err")"
+    ko "error: three.js missing" "$(cat "$tmp/err")"
 fi
 
 # Extra columns (others' additions) are carried along; the page still
@@ -112,20 +109,20 @@ awk -F, 'BEGIN { OFS = "," } { print $0, (NR == 1 ? "psi_ref_rad" : "-4.9e-324")
 if "$uuvsim" view "$tmp/extra" >/dev/null 2>"$tmp/err"; then
     ok "a telemetry file with an extra column of subnormal values"
 else
-    bad "a telemetry file with an extra column of subnormal values" "$(cat "$tmp/err")"
+    ko "a telemetry file with an extra column of subnormal values" "$(cat "$tmp/err")"
 fi
 
 # The browser: the page as written, then a broken copy (a script error).
 if python3 "$here/view_browser.py" "$run/mission.html" 5 28 >"$tmp/browser" 2>&1; then
     ok "the page in headless Chromium: $(grep -c '^ok' "$tmp/browser") checks"
 else
-    bad "the page in headless Chromium" "$(grep -v '^ok' "$tmp/browser" | head -5)"
+    ko "the page in headless Chromium" "$(grep -v '^ok' "$tmp/browser" | head -5)"
 fi
 sed 's/^}, { passive: false });$/}, { passive: false }));/' "$run/mission.html" >"$tmp/broken.html"
 if cmp -s "$run/mission.html" "$tmp/broken.html"; then
-    bad "a broken page fails the browser check" "could not break the page"
+    ko "a broken page fails the browser check" "could not break the page"
 elif python3 "$here/view_browser.py" "$tmp/broken.html" 5 28 >"$tmp/broken" 2>&1; then
-    bad "a broken page fails the browser check" "it passed"
+    ko "a broken page fails the browser check" "it passed"
 else
     ok "a broken page fails the browser check ($(grep -m1 '^FAIL' "$tmp/broken" | head -c 120))"
 fi
@@ -147,7 +144,7 @@ done
 if [ -n "$url" ] && python3 "$here/view_browser.py" --live "$url" >"$tmp/live/browser" 2>&1; then
     ok "the live view in headless Chromium: $(grep -c '^ok' "$tmp/live/browser") checks"
 else
-    bad "the live view in headless Chromium" "$(grep -v '^ok' "$tmp/live/browser" 2>/dev/null |
+    ko "the live view in headless Chromium" "$(grep -v '^ok' "$tmp/live/browser" 2>/dev/null |
         head -5) $(cat "$tmp/live/err")"
 fi
 # The run ends by itself once watched; it is stopped if the browser never came.
@@ -162,16 +159,15 @@ status=$?
 if [ $status -eq 0 ] && cmp -s "$tmp/live/telemetry.csv" "$tmp/live/plain.csv"; then
     ok "the watched run exits 0 with the same telemetry as an unwatched one"
 else
-    bad "the watched run" "exit $status, or its telemetry differs"
+    ko "the watched run" "exit $status, or its telemetry differs"
 fi
 sed 's/^/    /' "$tmp/live/browser"
 if "$uuvsim" --view --view-port 70000 --scenario scenarios/default.scn >/dev/null 2>"$tmp/err"; then
-    bad "error: --view-port 70000" "exit 0"
+    ko "error: --view-port 70000" "exit 0"
 elif grep -q "expected a port number in \[0, 65535\], got '70000'" "$tmp/err"; then
     ok "error: --view-port 70000 (exit 2)"
 else
-    bad "error: --view-port 70000" "$(cat "$tmp/err")"
+    ko "error: --view-port 70000" "$(cat "$tmp/err")"
 fi
 
-echo "$pass passed, $fail failed"
-[ "$fail" -eq 0 ]
+finish
