@@ -448,6 +448,9 @@ static bool leap_take(leap_tables *L, drive_segment *d, unsigned s, uint32_t k, 
         ps->i_dc = (float)y[R_IDC_LAST];
     }
     pwm_rt_skip(&d->rt, k);
+    if (d->rt.n == 0u) {
+        d->rt.next_at = d->rt.k; /* unplanned (plans_off()): the next step on its own */
+    }
     for (unsigned x = 0u; x < 3u; x++) {
         d->s[x] = (int32_t)((s >> x) & 1u);
     }
@@ -521,6 +524,20 @@ static void leap_run(void *ctx, drive_segment *d, uint32_t n) {
     }
 }
 
+/*
+ * The leaps find the edges themselves (scan_signs()): the motor task's frame
+ * plans would only serve the few ordinary steps, at more than those steps
+ * cost, and the steps computed one by one give the plans' duties and states
+ * bit for bit (pwm_rt.h). Both frames handed over to single steps: the one in
+ * force, and the one the first latch starts (prepared in drive_init()).
+ */
+static void plans_off(pwm_rt *p) {
+    pwm_rt_frames(p, 0u);
+    const pwm_rt_frame *now = &p->fr[p->cur];
+    const pwm_rt_ramp ramp = {{now->r0[0], now->r0[1]}, {now->dr[0], now->dr[1]}};
+    pwm_rt_plan(p, p->cur ^ 1u, now->ph0, &ramp);
+}
+
 bool leap_attach(exec *e) {
     void *mem = NULL;
     if (posix_memalign(&mem, 64u, sizeof(leap_tables)) != 0) {
@@ -528,6 +545,9 @@ bool leap_attach(exec *e) {
     }
     leap_tables *L = mem;
     memset(L, 0, sizeof *L);
+    if (e->drive.cfg.inverter == DRIVE_INVERTER_SWITCHING) {
+        plans_off(&e->drive.rt);
+    }
     e->desk_run = leap_run;
     e->desk_ctx = L;
     return true;
