@@ -11,6 +11,7 @@
 #include "fixedpoint/wavetable.h"
 #include "math/umath.h"
 #include "models/drive/inverter/power_stage_nodes.h"
+#include "models/drive/pwm/pwm_average.h"
 
 #define QS_INV_SQRT3_Q31 1239850262   /* round(2^31 / sqrt 3) */
 #define QS_HALF_SQRT3_Q31 1859775393  /* round(2^31 sqrt(3) / 2) */
@@ -109,6 +110,9 @@ inverter_avg_status inverter_quasi_static_init_q(inverter_quasi_static_q *inv, c
     }
     const double v_q28 = inverter_quasi_static_clamp_v0(v_dc0_v) / 1024.0 * 268435456.0 + 0.5;
     inv->frame_ns = frame_ns;
+    inv->rot_half = inv->mod.half_inc_s;
+    inv->rot_c = wt_cos_q15(inv->rot_half);
+    inv->rot_s = wt_sin_q15(inv->rot_half);
     inv->v_dc = (int32_t)v_q28;
     inv->u[0] = 0;
     inv->u[1] = 0;
@@ -130,6 +134,9 @@ inverter_avg_status inverter_quasi_static_init_f32(inverter_quasi_static_f32 *in
         return INVERTER_AVG_ERR_PWM;
     }
     inv->frame_ns = frame_ns;
+    inv->rot_half = inv->mod.half_inc_s;
+    inv->rot_c = wt_cos_f32(inv->rot_half);
+    inv->rot_s = wt_sin_f32(inv->rot_half);
     inv->v_dc = (float)inverter_quasi_static_clamp_v0(v_dc0_v);
     inv->u[0] = 0.0f;
     inv->u[1] = 0.0f;
@@ -214,15 +221,34 @@ uint32_t inverter_quasi_static_battery_f32(const inverter_quasi_static_f32 *inv,
 }
 
 /*
+ * The turn of the currents below, the references' advance over half a
+ * frame (the modulator's half_inc_s): its cosine and sine, formed again
+ * only when the command changed it (most frames keep it).
+ */
+static inline void inverter_quasi_static_rot_q(inverter_quasi_static_q *inv) {
+    if (inv->mod.half_inc_s != inv->rot_half) {
+        inv->rot_half = inv->mod.half_inc_s;
+        inv->rot_c = wt_cos_q15(inv->rot_half);
+        inv->rot_s = wt_sin_q15(inv->rot_half);
+    }
+}
+
+static inline void inverter_quasi_static_rot_f32(inverter_quasi_static_f32 *inv) {
+    if (inv->mod.half_inc_s != inv->rot_half) {
+        inv->rot_half = inv->mod.half_inc_s;
+        inv->rot_c = wt_cos_f32(inv->rot_half);
+        inv->rot_s = wt_sin_f32(inv->rot_half);
+    }
+}
+
+/*
  * The motor currents at the frame's middle: those at its start, as the
  * vector i_alpha + j i_beta (i_beta = (i_a + 2 i_b) / sqrt 3), turned by
- * the references' advance over half a frame, the modulator's half_inc_s
- * (exact for a steady rotation). Q3.28 currents of at most 1 per unit
+ * the references' advance over half a frame (cosine and sine in Q15;
+ * exact for a steady rotation). Q3.28 currents of at most 1 per unit
  * times Q15 or Q31 constants stay far inside 64 bits.
  */
-static void inverter_quasi_static_mid_q(uint32_t half, int32_t *i_a, int32_t *i_b) {
-    const int64_t c = wt_cos_q15(half);
-    const int64_t s = wt_sin_q15(half);
+static inline void inverter_quasi_static_mid_q(int64_t c, int64_t s, int32_t *i_a, int32_t *i_b) {
     const int64_t a = *i_a;
     const int64_t beta = fp_shr_round_i64((a + 2 * (int64_t)*i_b) * QS_INV_SQRT3_Q31, 31u);
     const int64_t a2 = fp_shr_round_i64(a * c - beta * s, 15u);
@@ -241,19 +267,25 @@ static void inverter_quasi_static_mid_q(uint32_t half, int32_t *i_a, int32_t *i_
 void inverter_quasi_static_step_q(inverter_quasi_static_q *inv,
                                   const inverter_quasi_static_bus_q *bat, int32_t i_a,
                                   int32_t i_b) {
-    pwm_out_q d;
+    int32_t r[3];
+    int32_t duty[3];
     int32_t u_a;
     int32_t u_b;
     uint32_t sat = inv->sat_count;
     int32_t m_a = i_a;
     int32_t m_b = i_b;
-    inverter_quasi_static_mid_q(inv->mod.half_inc_s, &m_a, &m_b);
-    pwm_average_q(&inv->mod, &d);
-    const int32_t i_dc = ps_dc_current_q(d.duty, 2 * m_a, 2 * m_b);
+    inverter_quasi_static_rot_q(inv);
+    inverter_quasi_static_mid_q(inv->rot_c, inv->rot_s, &m_a, &m_b);
+    /* The duties of pwm_average_q(), without its states. */
+    pwm_average_refs_q(&inv->mod, r);
+    for (int x = 0; x < 3; x++) {
+        duty[x] = pwm_duty_avg_q(r[x]);
+    }
+    const int32_t i_dc = ps_dc_current_q(duty, 2 * m_a, 2 * m_b);
     const int64_t dv = fp_shr_round_i64((int64_t)(bat->e - inv->v_dc) * bat->alpha, 31u) -
                        fp_shr_round_i64((int64_t)i_dc * bat->beta, 24u);
     const int32_t v = ps_clamp_q(fp_sat_q31((int64_t)inv->v_dc + dv), &sat);
-    ps_inverter_q(v, d.duty, &u_a, &u_b);
+    ps_inverter_q(v, duty, &u_a, &u_b);
     inv->v_dc = v;
     inv->u[0] = u_a;
     inv->u[1] = u_b;
@@ -264,21 +296,26 @@ void inverter_quasi_static_step_q(inverter_quasi_static_q *inv,
 void inverter_quasi_static_step_f32(inverter_quasi_static_f32 *inv,
                                     const inverter_quasi_static_bus_f32 *bat, float i_a,
                                     float i_b) {
-    pwm_out_f32 d;
+    float r[3];
+    float duty[3];
     float u_a;
     float u_b;
     /* The currents at the frame's middle, as in the fixed twin. */
-    const float c = wt_cos_f32(inv->mod.half_inc_s);
-    const float s = wt_sin_f32(inv->mod.half_inc_s);
+    inverter_quasi_static_rot_f32(inv);
+    const float c = inv->rot_c;
+    const float s = inv->rot_s;
     const float beta = (i_a + 2.0f * i_b) * 0.577350269f;
     const float m_a = i_a * c - beta * s;
     const float m_b = 0.866025404f * (beta * c + i_a * s) - 0.5f * m_a;
-    pwm_average_f32(&inv->mod, &d);
-    const float i_dc = ps_dc_current_f32(d.duty, 2.0f * m_a, 2.0f * m_b);
+    pwm_average_refs_f32(&inv->mod, r);
+    for (int x = 0; x < 3; x++) {
+        duty[x] = pwm_duty_avg_f32(r[x]);
+    }
+    const float i_dc = ps_dc_current_f32(duty, 2.0f * m_a, 2.0f * m_b);
     const float v = ps_clamp_f32(
         inv->v_dc + (bat->alpha * (bat->e_v - inv->v_dc) - bat->beta_ohm * i_dc), PS_V_LIM_F32,
         &inv->sat_count);
-    ps_inverter_f32(v, d.duty, &u_a, &u_b);
+    ps_inverter_f32(v, duty, &u_a, &u_b);
     inv->v_dc = v;
     inv->u[0] = u_a;
     inv->u[1] = u_b;

@@ -128,6 +128,9 @@ typedef struct {
 typedef struct {
     pwm_q mod;          /* references only (its carrier is not used) */
     uint32_t frame_ns;  /* [ns] frame T */
+    uint32_t rot_half;  /* the mod.half_inc_s that rot_c, rot_s are of */
+    int32_t rot_c;      /* [-] its cosine and sine (wt_cos_q15, wt_sin_q15), Q15 */
+    int32_t rot_s;
     int32_t v_dc;       /* [V] DC-link voltage at the frame's end, Q3.28 of 1024 V */
     int32_t u[2];       /* [V] terminal voltages a, b, frame means, Q3.28 of 1024 V */
     int32_t i_dc;       /* [A] inverter input current, Q3.28 of 256 A */
@@ -144,6 +147,9 @@ typedef struct {
 typedef struct {
     pwm_f32 mod;
     uint32_t frame_ns;
+    uint32_t rot_half;  /* as in the fixed twin (wt_cos_f32, wt_sin_f32) */
+    float rot_c;
+    float rot_s;
     float v_dc;         /* [V] */
     float u[2];         /* [V] */
     float i_dc;         /* [A] */

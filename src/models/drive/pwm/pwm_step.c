@@ -8,6 +8,7 @@
 #include "models/drive/pwm/pwm.h"
 
 #include "fixedpoint/wavetable.h"
+#include "models/drive/pwm/pwm_average.h"
 
 /* The three switch states of a step. */
 static inline void pwm_states(uint8_t state[3], int a, int b, int c) {
@@ -80,35 +81,13 @@ static void pwm_switch_q(pwm_q *pw, pwm_out_q *out) {
     pw->ph_s = ph_s;
 }
 
-/*
- * m * sin in Q15 units, rounded (ties up), for the averaged duties. m in
- * [0, 32767] and |sin| <= 32767: the product fits int32_t.
- */
-static inline int32_t pwm_ref_q(int32_t m, q15_t s) {
-    return fp_shr_round_i32(m * (int32_t)s, 15u);
-}
-
-/*
- * (32768 + r + 1) / 2 floored, r in Q15 units. r_c = -r_a - r_b can reach
- * 32769 in magnitude (two table roundings), so the sum is in [0, 65538]
- * and the duty is clamped to 32768.
- */
-static inline int32_t pwm_duty_avg_q(int32_t r) {
-    uint32_t d = (uint32_t)(PWM_DUTY_ONE_Q + r + 1) >> 1;
-    return (d > (uint32_t)PWM_DUTY_ONE_Q) ? PWM_DUTY_ONE_Q : (int32_t)d;
-}
-
 void pwm_average_q(pwm_q *pw, pwm_out_q *out) {
-    const uint32_t ph_mid = pw->ph_s + pw->half_inc_s;
-    const int32_t ra = pwm_ref_q(pw->m, wt_sin_q15(ph_mid));
-    const int32_t rb = pwm_ref_q(pw->m, wt_sin_q15(ph_mid - WT_PHASE_120));
-    const int32_t rc = -ra - rb;
-
-    out->duty[0] = pwm_duty_avg_q(ra);
-    out->duty[1] = pwm_duty_avg_q(rb);
-    out->duty[2] = pwm_duty_avg_q(rc);
-    pwm_states(out->state, ra > 0, rb > 0, rc > 0);
-    pw->ph_s += pw->inc_s;
+    int32_t r[3];
+    pwm_average_refs_q(pw, r);
+    out->duty[0] = pwm_duty_avg_q(r[0]);
+    out->duty[1] = pwm_duty_avg_q(r[1]);
+    out->duty[2] = pwm_duty_avg_q(r[2]);
+    pwm_states(out->state, r[0] > 0, r[1] > 0, r[2] > 0);
 }
 
 /* ---- Float twin ------------------------------------------------------------ */
@@ -160,23 +139,13 @@ static void pwm_switch_f32(pwm_f32 *pw, pwm_out_f32 *out) {
     pw->ph_s = ph_s;
 }
 
-/* (1 + r) / 2 clamped to [0, 1]. */
-static inline float pwm_duty_avg_f32(float r) {
-    float d = 0.5f + 0.5f * r;
-    return (d > 1.0f) ? 1.0f : (d < 0.0f) ? 0.0f : d;
-}
-
 void pwm_average_f32(pwm_f32 *pw, pwm_out_f32 *out) {
-    const uint32_t ph_mid = pw->ph_s + pw->half_inc_s;
-    const float ra = pw->m * wt_sin_f32(ph_mid);
-    const float rb = pw->m * wt_sin_f32(ph_mid - WT_PHASE_120);
-    const float rc = -ra - rb;
-
-    out->duty[0] = pwm_duty_avg_f32(ra);
-    out->duty[1] = pwm_duty_avg_f32(rb);
-    out->duty[2] = pwm_duty_avg_f32(rc);
-    pwm_states(out->state, ra > 0.0f, rb > 0.0f, rc > 0.0f);
-    pw->ph_s += pw->inc_s;
+    float r[3];
+    pwm_average_refs_f32(pw, r);
+    out->duty[0] = pwm_duty_avg_f32(r[0]);
+    out->duty[1] = pwm_duty_avg_f32(r[1]);
+    out->duty[2] = pwm_duty_avg_f32(r[2]);
+    pwm_states(out->state, r[0] > 0.0f, r[1] > 0.0f, r[2] > 0.0f);
 }
 
 /* ---- Dispatch on the mode ---------------------------------------------------- */
