@@ -298,6 +298,12 @@ void pwm_rt_frames(pwm_rt *p, uint32_t n) {
 }
 
 void pwm_rt_skip(pwm_rt *p, uint32_t n) {
+    if (UUV_LEAN_IMAGE != 0) {
+        for (uint32_t j = 0u; j < n; j++) {
+            pwm_rt_advance(p); /* the frame's start moves (pwm_rt_k()) */
+        }
+        return;
+    }
     const uint32_t k = p->k + n;
     p->k = k;
     if (p->n == 0u) {

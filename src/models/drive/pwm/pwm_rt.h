@@ -116,6 +116,29 @@ typedef struct {
     pwm_rt_event ev[2u * (PWM_RT_EVENTS + 1u)];
 } pwm_rt;
 
+/*
+ * The frame in force, fr[pwm_rt_cur()], and the steps of it taken,
+ * pwm_rt_k(). Without plans (n = 0) a frame starts again in place
+ * (pwm_rt_apply()). A lean image (uuv_config.h), which plans nothing, steps
+ * fr[0] only and moves its start with each step (pwm_rt_advance()), k
+ * staying 0: its step forms no products.
+ */
+static inline uint32_t pwm_rt_cur(const pwm_rt *p) { return (UUV_LEAN_IMAGE != 0) ? 0u : p->cur; }
+static inline uint32_t pwm_rt_k(const pwm_rt *p) { return (UUV_LEAN_IMAGE != 0) ? 0u : p->k; }
+
+/* The step is taken: the carrier and the references advance to t_k+1 (see pwm_rt_k()). */
+static inline void pwm_rt_advance(pwm_rt *p) __attribute__((always_inline));
+static inline void pwm_rt_advance(pwm_rt *p) {
+    if (UUV_LEAN_IMAGE != 0) {
+        pwm_rt_frame *f = &p->fr[0];
+        f->ph0 += p->inc_c;
+        f->r0[0] = (int32_t)((uint32_t)f->r0[0] + (uint32_t)f->dr[0]);
+        f->r0[1] = (int32_t)((uint32_t)f->r0[1] + (uint32_t)f->dr[1]);
+    } else {
+        p->k++;
+    }
+}
+
 #define PWM_RT_DUTY_ONE 32768 /* a whole step's duty (Q15, as pwm.h's PWM_DUTY_ONE_Q) */
 
 /* What the motor task hands the step for one frame: the references' start and slope. */
@@ -148,14 +171,15 @@ static inline int32_t pwm_rt_ref(const pwm_rt_frame *f, int x, uint32_t k) {
  * Integer only, branch-free but for the carrier's fold; total.
  */
 static inline void pwm_rt_step(pwm_rt *p, int32_t s[3]) {
-    const pwm_rt_frame *f = &p->fr[p->cur];
-    const int32_t c = pwm_rt_carrier(f->ph0 + p->k * p->inc_c);
-    const int32_t ra = pwm_rt_ref(f, 0, p->k);
-    const int32_t rb = pwm_rt_ref(f, 1, p->k);
+    const pwm_rt_frame *f = &p->fr[pwm_rt_cur(p)];
+    const uint32_t k = pwm_rt_k(p);
+    const int32_t c = pwm_rt_carrier(f->ph0 + k * p->inc_c);
+    const int32_t ra = pwm_rt_ref(f, 0, k);
+    const int32_t rb = pwm_rt_ref(f, 1, k);
     s[0] = pwm_rt_neg(c - ra);
     s[1] = pwm_rt_neg(c - rb);
     s[2] = pwm_rt_neg(c + ra + rb);
-    p->k++;
+    pwm_rt_advance(p);
 }
 
 /* The comparisons e = r - c of the three legs at step j of frame f. */
@@ -168,15 +192,28 @@ static inline void pwm_rt_e_at(const pwm_rt_frame *f, uint32_t inc, uint32_t j, 
     e[2] = -ra - rb - c;
 }
 
-/* The comparisons e = r - c of the three legs at t_k (e0) and t_k+1 (e1), Q23. */
+/*
+ * The comparisons e = r - c of the three legs at t_k (e0) and t_k+1 (e1),
+ * Q23: pwm_rt_e_at() at k and k + 1, the second from the first's phase and
+ * references by one step (the same sums modulo 2^32).
+ */
 static inline void pwm_rt_ends(const pwm_rt *p, int32_t e0[3], int32_t e1[3]) {
-    const pwm_rt_frame *f = &p->fr[p->cur];
-    pwm_rt_e_at(f, p->inc_c, p->k, e0);
-    pwm_rt_e_at(f, p->inc_c, p->k + 1u, e1);
+    const pwm_rt_frame *f = &p->fr[pwm_rt_cur(p)];
+    const uint32_t k = pwm_rt_k(p);
+    const uint32_t ph = f->ph0 + k * p->inc_c;
+    const int32_t c0 = pwm_rt_carrier(ph);
+    const int32_t c1 = pwm_rt_carrier(ph + p->inc_c);
+    const uint32_t ra = (uint32_t)f->r0[0] + k * (uint32_t)f->dr[0];
+    const uint32_t rb = (uint32_t)f->r0[1] + k * (uint32_t)f->dr[1];
+    const uint32_t ra1 = ra + (uint32_t)f->dr[0];
+    const uint32_t rb1 = rb + (uint32_t)f->dr[1];
+    e0[0] = (int32_t)ra - c0;
+    e0[1] = (int32_t)rb - c0;
+    e0[2] = (int32_t)(0u - ra - rb) - c0;
+    e1[0] = (int32_t)ra1 - c1;
+    e1[1] = (int32_t)rb1 - c1;
+    e1[2] = (int32_t)(0u - ra1 - rb1) - c1;
 }
-
-/* The step is taken: the carrier and the references advance to t_k+1. */
-static inline void pwm_rt_advance(pwm_rt *p) { p->k++; }
 
 /*
  * The on-time of a leg over a step whose comparison goes linearly from e0
@@ -255,6 +292,8 @@ static inline void pwm_rt_substep(pwm_rt *p, int32_t s[3], int32_t duty[3]) {
 }
 
 /* One step by the modulator in force: sampled, or sub-step by the plan (no dead time). */
+static inline void pwm_rt_duties(pwm_rt *p, bool sampled, int32_t s[3], int32_t duty[3])
+    __attribute__((always_inline));
 static inline void pwm_rt_duties(pwm_rt *p, bool sampled, int32_t s[3], int32_t duty[3]) {
     if (sampled) {
         pwm_rt_sampled(p, s, duty);
@@ -333,20 +372,26 @@ void pwm_rt_plan(pwm_rt *p, uint32_t c, uint32_t ph, const pwm_rt_ramp *ramp);
  * for it when it starts where the frame in force ends, else planned here.
  */
 static inline void pwm_rt_apply(pwm_rt *p, const pwm_rt_ramp *ramp) {
-    const uint32_t c = p->cur ^ 1u;
-    const uint32_t ph = p->fr[p->cur].ph0 + p->k * p->inc_c;
-    pwm_rt_frame *f = &p->fr[c];
-    if (p->n == 0u) {
-        /* No plans: the frame's start only (its events are the one that hands every step over). */
-        f->ph0 = ph;
+    if (UUV_LEAN_IMAGE != 0 || p->n == 0u) {
+        /* No plans: the frame in force starts again here (its event the one that hands every
+         * step over). */
+        pwm_rt_frame *f = &p->fr[pwm_rt_cur(p)];
+        f->ph0 += pwm_rt_k(p) * p->inc_c;
         f->r0[0] = ramp->r0[0];
         f->r0[1] = ramp->r0[1];
         f->dr[0] = ramp->dr[0];
         f->dr[1] = ramp->dr[1];
-    } else if (!f->ready || f->ph0 != ph) {
+        p->k = 0u;
+        if (UUV_LEAN_IMAGE == 0) {
+            p->next_at = 0u;
+        }
+        return;
+    }
+    const uint32_t c = p->cur ^ 1u;
+    const uint32_t ph = p->fr[p->cur].ph0 + p->k * p->inc_c;
+    pwm_rt_frame *f = &p->fr[c];
+    if (!f->ready || f->ph0 != ph) {
         pwm_rt_plan(p, c, ph, ramp);
-    } else {
-        /* Prepared for this start: taken as it is. */
     }
     f->ready = false;
     p->cur = c;
@@ -357,14 +402,14 @@ static inline void pwm_rt_apply(pwm_rt *p, const pwm_rt_ramp *ramp) {
 
 /* The carrier phase at the frame's step k now (the step-by-step form's state). */
 static inline uint32_t pwm_rt_phase(const pwm_rt *p) {
-    return p->fr[p->cur].ph0 + p->k * p->inc_c;
+    return p->fr[pwm_rt_cur(p)].ph0 + pwm_rt_k(p) * p->inc_c;
 }
 
 /* The reference of leg x (a or b) now, and its change per step. */
 static inline int32_t pwm_rt_ref_now(const pwm_rt *p, int x) {
-    return pwm_rt_ref(&p->fr[p->cur], x, p->k);
+    return pwm_rt_ref(&p->fr[pwm_rt_cur(p)], x, pwm_rt_k(p));
 }
-static inline int32_t pwm_rt_slope(const pwm_rt *p, int x) { return p->fr[p->cur].dr[x]; }
+static inline int32_t pwm_rt_slope(const pwm_rt *p, int x) { return p->fr[pwm_rt_cur(p)].dr[x]; }
 
 /*
  * n steps taken by a port's own stepping of the same model (the desk's
@@ -385,7 +430,7 @@ static inline int32_t pwm_rt_bit(uint32_t b, uint32_t x) {
 
 /* The states for the first step of the frame in force, before any event (a path's start). */
 static inline void pwm_rt_states(const pwm_rt *p, int32_t s[3]) {
-    const uint32_t b = p->fr[p->cur].s0;
+    const uint32_t b = p->fr[pwm_rt_cur(p)].s0;
     s[0] = pwm_rt_bit(b, 0u);
     s[1] = pwm_rt_bit(b, 1u);
     s[2] = pwm_rt_bit(b, 2u);
