@@ -250,23 +250,57 @@ static void tables_check(leap_tables *L, const drive_segment *d) {
 
 /* ---- The switching events ------------------------------------------------ */
 
-#define SCAN_MAX 64u /* steps scanned for edges at a time */
+#define SCAN_MAX 63u /* steps scanned for edges at a time (their 64 grid points: one word) */
 
 /*
- * The leg signs (bit x: e_x > 0, e_x = r_x - c the leg's comparison) at
- * grid points 0..n from now, as the exact path forms them (pwm_rt_ends()):
- * a step j has an edge when sig[j] != sig[j + 1]. Integer only; the loop
- * vectorises.
+ * The leg signs at grid points 0..n from now (n <= SCAN_MAX), as the exact
+ * path forms them (pwm_rt_ends()): bit j of leg[x] is e_x > 0 at point j,
+ * e_x = r_x - c the leg's comparison; a step j has an edge when bit j and
+ * bit j + 1 of some leg differ. Integer only: in AVX2 eight points at a
+ * time where the build has it (the same integers), else a plain loop.
  */
-static void scan_signs(const pwm_rt *p, uint32_t n, uint8_t *restrict sig) {
-    /* n <= SCAN_MAX */
+static void scan_signs(const pwm_rt *p, uint32_t n, uint64_t leg[3]) {
     const uint32_t ph0 = pwm_rt_phase(p);
     const uint32_t inc = p->inc_c;
     const uint32_t r0a = (uint32_t)pwm_rt_ref_now(p, 0);
     const uint32_t r0b = (uint32_t)pwm_rt_ref_now(p, 1);
     const uint32_t dra = (uint32_t)pwm_rt_slope(p, 0);
     const uint32_t drb = (uint32_t)pwm_rt_slope(p, 1);
-    int32_t w[SCAN_MAX + 1u];
+    uint64_t m[3] = {0u, 0u, 0u};
+#if LEAP_AVX2
+    /* The carrier's fold as integers: for ph >= 2^31 (s = -1), 2^25 - x = (x ^ s) - s + 2^25. */
+    const __m256i lane = _mm256_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7);
+    __m256i ph = _mm256_add_epi32(_mm256_set1_epi32((int32_t)ph0),
+                                  _mm256_mullo_epi32(lane, _mm256_set1_epi32((int32_t)inc)));
+    __m256i ra = _mm256_add_epi32(_mm256_set1_epi32((int32_t)r0a),
+                                  _mm256_mullo_epi32(lane, _mm256_set1_epi32((int32_t)dra)));
+    __m256i rb = _mm256_add_epi32(_mm256_set1_epi32((int32_t)r0b),
+                                  _mm256_mullo_epi32(lane, _mm256_set1_epi32((int32_t)drb)));
+    const __m256i d_ph = _mm256_set1_epi32((int32_t)(8u * inc));
+    const __m256i d_ra = _mm256_set1_epi32((int32_t)(8u * dra));
+    const __m256i d_rb = _mm256_set1_epi32((int32_t)(8u * drb));
+    const __m256i one = _mm256_set1_epi32(PWM_RT_ONE);
+    const __m256i top = _mm256_set1_epi32(0x2000000);
+    const __m256i zero = _mm256_setzero_si256();
+    for (uint32_t j = 0u; j <= n; j += 8u) {
+        const __m256i x = _mm256_srli_epi32(ph, 7);
+        const __m256i sg = _mm256_srai_epi32(ph, 31);
+        const __m256i y = _mm256_add_epi32(_mm256_sub_epi32(_mm256_xor_si256(x, sg), sg),
+                                           _mm256_and_si256(sg, top));
+        const __m256i c = _mm256_sub_epi32(y, one);
+        const __m256i ea = _mm256_sub_epi32(ra, c);
+        const __m256i eb = _mm256_sub_epi32(rb, c);
+        const __m256i ec = _mm256_sub_epi32(_mm256_sub_epi32(_mm256_sub_epi32(zero, ra), rb), c);
+        const __m256i e[3] = {ea, eb, ec};
+        for (int l = 0; l < 3; l++) {
+            const int bits = _mm256_movemask_ps(_mm256_castsi256_ps(_mm256_cmpgt_epi32(e[l], zero)));
+            m[l] |= (uint64_t)(uint32_t)bits << j;
+        }
+        ph = _mm256_add_epi32(ph, d_ph);
+        ra = _mm256_add_epi32(ra, d_ra);
+        rb = _mm256_add_epi32(rb, d_rb);
+    }
+#else
     for (uint32_t j = 0u; j <= n; j++) {
         const uint32_t ph = ph0 + j * inc;
         const uint32_t x = ph >> 7;
@@ -274,38 +308,22 @@ static void scan_signs(const pwm_rt *p, uint32_t n, uint8_t *restrict sig) {
         const int32_t c = (int32_t)y - PWM_RT_ONE;
         const int32_t ra = (int32_t)(r0a + j * dra);
         const int32_t rb = (int32_t)(r0b + j * drb);
-        w[j] = (int32_t)(ra - c > 0) | ((int32_t)(rb - c > 0) << 1) |
-               ((int32_t)(-ra - rb - c > 0) << 2);
+        m[0] |= (uint64_t)(ra - c > 0) << j;
+        m[1] |= (uint64_t)(rb - c > 0) << j;
+        m[2] |= (uint64_t)(-ra - rb - c > 0) << j;
     }
-    for (uint32_t j = 0u; j <= n; j++) {
-        sig[j] = (uint8_t)w[j];
+#endif
+    /* Points past n (the last block's) dropped: n + 1 <= 64 points. */
+    const uint64_t keep = (n >= 63u) ? ~(uint64_t)0 : (((uint64_t)1 << (n + 1u)) - 1u);
+    for (int l = 0; l < 3; l++) {
+        leg[l] = m[l] & keep;
     }
 }
 
-/*
- * The first i >= j with sig[i] != sig[i + 1] (sig holds a sentinel that
- * differs at the end), eight points at a time where bytes load as
- * little-endian words.
- */
-static uint32_t next_edge(const uint8_t *sig, uint32_t j) {
-#if defined(__BYTE_ORDER__) && (__BYTE_ORDER__ == __ORDER_LITTLE_ENDIAN__)
-    for (;;) {
-        uint64_t a;
-        uint64_t b;
-        memcpy(&a, sig + j, 8u);
-        memcpy(&b, sig + j + 1u, 8u);
-        const uint64_t dif = a ^ b;
-        if (dif != 0u) {
-            return j + (uint32_t)__builtin_ctzll(dif) / 8u;
-        }
-        j += 8u;
-    }
-#else
-    while (sig[j] == sig[j + 1u]) {
-        j++;
-    }
-    return j;
-#endif
+/* The legs' states at point j (bit x: leg x high). */
+static unsigned signs_at(const uint64_t leg[3], uint32_t j) {
+    return (unsigned)(((leg[0] >> j) & 1u) | (((leg[1] >> j) & 1u) << 1) |
+                      (((leg[2] >> j) & 1u) << 2));
 }
 
 /* ---- The leap ---------------------------------------------------------------- */
@@ -499,20 +517,22 @@ static void leap_run(void *ctx, drive_segment *d, uint32_t n) {
         return;
     }
     tables_check(L, d);
-    /* Points 0..m, the sentinel m + 1 (not a sign: 8), room for the last word's load. */
-    uint8_t sig[SCAN_MAX + 10u];
     uint32_t done = 0u;
     while (done < n) {
         const uint32_t m = (n - done < SCAN_MAX) ? n - done : SCAN_MAX;
-        scan_signs(&d->rt, m, sig);
-        memset(sig + m + 1u, 8, 8u);
+        uint64_t leg[3];
+        scan_signs(&d->rt, m, leg);
+        /* Bit j: step j (j < m) has an edge. */
+        const uint64_t edges = ((leg[0] ^ (leg[0] >> 1)) | (leg[1] ^ (leg[1] >> 1)) |
+                                (leg[2] ^ (leg[2] >> 1))) &
+                               (((uint64_t)1 << m) - 1u);
         uint32_t j = 0u;
         while (j < m) {
-            const uint32_t i0 = next_edge(sig, j);
-            uint32_t i = (i0 < m) ? i0 : m;
+            const uint64_t ahead = edges >> j;
+            uint32_t i = (ahead != 0u) ? j + (uint32_t)__builtin_ctzll(ahead) : m;
             /* Steps j..i-1 hold the legs' states; step i (if i < m) has an edge. */
             if (i > j) {
-                stretch(L, d, (unsigned)sig[j], i - j, done + i == n);
+                stretch(L, d, signs_at(leg, j), i - j, done + i == n);
             }
             if (i < m) {
                 ordinary(L, d, 1u);
