@@ -38,28 +38,30 @@ pwm_status pwm_rt_init(pwm_rt *p, const pwm_params *pp, uint32_t step_ns) {
 
 /* ---- Plans (pwm_rt.h) ---------------------------------------------------- */
 
+/* The sign bit of -e as a leg state: 1 when e > 0 (|e| < 2^31). */
+static inline uint32_t pos_bit(int32_t e) { return (uint32_t)-e >> 31; }
+
+/* The sign bits (e > 0) of the three legs. */
+static inline uint32_t state_bits(int32_t e0, int32_t e1, int32_t e2) {
+    return pos_bit(e0) | (pos_bit(e1) << 1) | (pos_bit(e2) << 2);
+}
+
 /* A frame's legs for its plan: the carrier's start and step, each leg's reference and slope. */
 typedef struct {
     uint32_t ph0;
     uint32_t inc;
-    int32_t r0[3];
-    int32_t dr[3];
+    uint32_t r0[3];  /* the references at the frame's first step (Q23, as uint32_t: sums modulo 2^32) */
+    uint32_t dr[3];  /* their change per step */
+    uint32_t sh;     /* the duty division's pre-shift */
 } rt_legs;
 
-/* Leg x's comparison at step j: pwm_rt_e_at()'s, for one leg (the same sums modulo 2^32). */
-static inline int32_t e_leg(const rt_legs *g, uint32_t j, uint32_t x) {
+/* The three legs' comparisons at step j: pwm_rt_e_at()'s (the same sums modulo 2^32), their states. */
+static inline uint32_t e_legs(const rt_legs *g, uint32_t j, int32_t e[3]) {
     const int32_t c = pwm_rt_carrier(g->ph0 + j * g->inc);
-    const uint32_t r = (uint32_t)g->r0[x] + j * (uint32_t)g->dr[x];
-    return (int32_t)r - c;
-}
-
-/* The three legs' comparisons at step j. */
-static inline void e_legs(const rt_legs *g, uint32_t j, int32_t e[3]) {
-    const int32_t c = pwm_rt_carrier(g->ph0 + j * g->inc);
-    for (uint32_t x = 0u; x < 3u; x++) {
-        const uint32_t r = (uint32_t)g->r0[x] + j * (uint32_t)g->dr[x];
-        e[x] = (int32_t)r - c;
-    }
+    e[0] = (int32_t)(g->r0[0] + j * g->dr[0]) - c;
+    e[1] = (int32_t)(g->r0[1] + j * g->dr[1]) - c;
+    e[2] = (int32_t)(g->r0[2] + j * g->dr[2]) - c;
+    return state_bits(e[0], e[1], e[2]);
 }
 
 /*
@@ -68,33 +70,42 @@ static inline void e_legs(const rt_legs *g, uint32_t j, int32_t e[3]) {
  * (rising or not), where e is monotone: from e_a and the change per step
  * (the carrier's inc / 2^7 less the reference's slope, on the rising half;
  * plus it, on the falling one) the estimate, then the steps checked and
- * moved until e_t and e_t+1 (returned in e) differ in sign.
+ * moved until e_t and e_t+1 differ in sign; the leg's duty in that step
+ * (pwm_rt_edge_duty() of its ends) in *duty. The phase and the reference
+ * move with t by their steps (the same sums modulo 2^32).
  */
-static uint32_t edge_find(const rt_legs *g, uint32_t x, uint32_t a, uint32_t b, bool rising,
-                          int32_t e_a, int32_t e[2]) {
-    const bool pos = e_a > 0;
-    const int32_t carrier = (int32_t)(g->inc >> 7);
-    const uint32_t step = (uint32_t)(rising ? carrier - g->dr[x] : carrier + g->dr[x]);
-    const uint32_t gap = pos ? (uint32_t)e_a - 1u : 0u - (uint32_t)e_a;
-    uint32_t t = a + gap / step;
+static inline uint32_t edge_find(const rt_legs *g, uint32_t x, uint32_t a, uint32_t b, bool rising,
+                                 int32_t e_a, int32_t *duty) {
+    const uint32_t pos = pos_bit(e_a);
+    const uint32_t inc = g->inc;
+    const uint32_t dr = g->dr[x];
+    const uint32_t carrier = inc >> 7;
+    const uint32_t step = rising ? carrier - dr : carrier + dr;
+    const uint32_t gap = (uint32_t)e_a - pos;
+    const uint32_t sg = 0u - (pos ^ 1u); /* all ones for e_a <= 0: |gap| by its complement + 1 */
+    uint32_t t = a + ((gap ^ sg) - sg) / step;
     t = (t < b) ? t : b - 1u;
-    e[0] = e_leg(g, t, x);
-    while (t > a && (e[0] > 0) != pos) {
+    uint32_t ph = g->ph0 + t * inc;
+    uint32_t r = g->r0[x] + t * dr;
+    int32_t e0 = (int32_t)r - pwm_rt_carrier(ph);
+    while (t > a && pos_bit(e0) != pos) {
         t--;
-        e[0] = e_leg(g, t, x);
+        ph -= inc;
+        r -= dr;
+        e0 = (int32_t)r - pwm_rt_carrier(ph);
     }
-    e[1] = e_leg(g, t + 1u, x);
-    while ((e[1] > 0) == pos) {
+    ph += inc;
+    r += dr;
+    int32_t e1 = (int32_t)r - pwm_rt_carrier(ph);
+    while (pos_bit(e1) == pos) {
         t++;
-        e[0] = e[1];
-        e[1] = e_leg(g, t + 1u, x);
+        e0 = e1;
+        ph += inc;
+        r += dr;
+        e1 = (int32_t)r - pwm_rt_carrier(ph);
     }
+    *duty = pwm_rt_edge_duty(e0, e1, g->sh);
     return t;
-}
-
-/* The sign bits (e > 0) of the three legs (|e| < 2^31). */
-static uint32_t state_bits(const int32_t e[3]) {
-    return ((uint32_t)-e[0] >> 31) | (((uint32_t)-e[1] >> 31) << 1) | (((uint32_t)-e[2] >> 31) << 2);
 }
 
 /* The events of a plan being written. */
@@ -106,16 +117,25 @@ typedef struct {
     bool full;       /* handed over to single steps */
 } rt_plan_out;
 
-/* Writes an event at step at: kind, the states s, whole-step duties. */
-static pwm_rt_event *event_put(rt_plan_out *o, uint32_t at, uint32_t s, uint8_t kind) {
-    pwm_rt_event *v = &o->ev[o->n++];
+/* Writes event v: step at, kind, the states s, the duties d. */
+static inline void event_set(pwm_rt_event *v, uint32_t at, uint32_t s, uint8_t kind, int32_t d0,
+                             int32_t d1, int32_t d2) {
     v->at = (uint16_t)at;
     v->s = (uint8_t)s;
     v->kind = kind;
-    v->duty[0] = ((s & 1u) != 0u) ? PWM_RT_DUTY_ONE : 0;
-    v->duty[1] = ((s & 2u) != 0u) ? PWM_RT_DUTY_ONE : 0;
-    v->duty[2] = ((s & 4u) != 0u) ? PWM_RT_DUTY_ONE : 0;
-    return v;
+    v->duty[0] = d0;
+    v->duty[1] = d1;
+    v->duty[2] = d2;
+}
+
+/* Leg x's whole-step duty for the states s. */
+static inline int32_t held_duty(uint32_t s, uint32_t x) {
+    return (int32_t)(((s >> x) & 1u) << 15);
+}
+
+/* Writes an event at step at: kind, the states s, whole-step duties. */
+static inline void event_put(rt_plan_out *o, uint32_t at, uint32_t s, uint8_t kind) {
+    event_set(&o->ev[o->n++], at, s, kind, held_duty(s, 0u), held_duty(s, 1u), held_duty(s, 2u));
 }
 
 /*
@@ -123,58 +143,84 @@ static pwm_rt_event *event_put(rt_plan_out *o, uint32_t at, uint32_t s, uint8_t 
  * their states to s's bits); the first step's event before it when due;
  * the hand-over to single steps when the plan is full.
  */
-static void event_edges(rt_plan_out *o, uint32_t at, uint32_t mask, const int32_t duty[3],
+static inline void event_edges(rt_plan_out *o, uint32_t at, uint32_t mask, const int32_t duty[3],
                         uint32_t s) {
     if (o->full) {
         return;
     }
     if (o->need0 && at != 0u) {
-        (void)event_put(o, 0u, o->held, 0u);
+        event_put(o, 0u, o->held, 0u);
     }
     o->need0 = false;
     if (o->n == PWM_RT_EVENTS) {
-        (void)event_put(o, at, 0u, (uint8_t)PWM_RT_PER_STEP);
+        event_set(&o->ev[o->n++], at, 0u, (uint8_t)PWM_RT_PER_STEP, 0, 0, 0);
         o->full = true;
         return;
     }
-    o->held = (o->held & ~mask) | (s & mask);
-    pwm_rt_event *v = event_put(o, at, o->held, 1u);
+    const uint32_t h = (o->held & ~mask) | (s & mask);
+    o->held = h;
+    event_set(&o->ev[o->n++], at, h, 1u, ((mask & 1u) != 0u) ? duty[0] : held_duty(h, 0u),
+              ((mask & 2u) != 0u) ? duty[1] : held_duty(h, 1u),
+              ((mask & 4u) != 0u) ? duty[2] : held_duty(h, 2u));
+}
+
+/*
+ * The edges inside segment [a, b) of one carrier half of the legs of todo
+ * (their signs at a and b differ; ea their comparisons at a, sb their
+ * states at b) as events in step order, legs with the same step in one.
+ */
+static inline void segment_edges(const rt_legs *g, rt_plan_out *o, uint32_t a, uint32_t b, bool rising,
+                          const int32_t ea[3], uint32_t todo, uint32_t sb) {
+    uint32_t t[3] = {UINT32_MAX, UINT32_MAX, UINT32_MAX};
+    int32_t duty[3] = {0, 0, 0};
     for (uint32_t x = 0u; x < 3u; x++) {
-        if (((mask >> x) & 1u) != 0u) {
-            v->duty[x] = duty[x];
+        if (((todo >> x) & 1u) != 0u) {
+            t[x] = edge_find(g, x, a, b, rising, ea[x], &duty[x]);
         }
+    }
+    while (todo != 0u) {
+        const uint32_t at = (t[0] < t[1]) ? ((t[0] < t[2]) ? t[0] : t[2])
+                                          : ((t[1] < t[2]) ? t[1] : t[2]);
+        const uint32_t mask = (uint32_t)(t[0] == at) | ((uint32_t)(t[1] == at) << 1) |
+                              ((uint32_t)(t[2] == at) << 2);
+        event_edges(o, at, mask, duty, sb);
+        t[0] = ((mask & 1u) != 0u) ? UINT32_MAX : t[0];
+        t[1] = ((mask & 2u) != 0u) ? UINT32_MAX : t[1];
+        t[2] = ((mask & 4u) != 0u) ? UINT32_MAX : t[2];
+        todo &= ~mask;
     }
 }
 
 /*
  * The edges of frame f's n steps as events, segment by segment of the
  * carrier's halves (within one, each leg's comparison is monotone): an
- * edge inside a segment where the signs at its ends differ (edge_find()),
- * in step order, and one in the step that crosses into the next half
+ * edge inside a segment where the signs at its ends differ
+ * (segment_edges()), and one in the step that crosses into the next half
  * where that step's ends differ; f's states at its first and last index.
  * False when the frame cannot be planned (a reference as fast as the
  * carrier, or out of range).
  */
-static bool edges_find(const pwm_rt *p, pwm_rt_frame *f, rt_plan_out *o, bool force0,
+static inline bool edges_find(const pwm_rt *p, pwm_rt_frame *f, rt_plan_out *o, bool force0,
                        uint32_t prev) {
     const uint32_t n = p->n;
     const uint32_t inc = p->inc_c;
     const int32_t lim = (int32_t)(inc >> 7);
-    const rt_legs g = {f->ph0, inc, {f->r0[0], f->r0[1], -f->r0[0] - f->r0[1]},
-                       {f->dr[0], f->dr[1], -f->dr[0] - f->dr[1]}};
+    const rt_legs g = {f->ph0, inc,
+                       {(uint32_t)f->r0[0], (uint32_t)f->r0[1], (uint32_t)(-f->r0[0] - f->r0[1])},
+                       {(uint32_t)f->dr[0], (uint32_t)f->dr[1], (uint32_t)(-f->dr[0] - f->dr[1])},
+                       p->den_sh};
     if (n == 0u || n > 65535u || inc == 0u || inc >= 0x80000000u || f->r0[0] >= 0x1000000 ||
         f->r0[0] <= -0x1000000 || f->r0[1] >= 0x1000000 || f->r0[1] <= -0x1000000) {
         return false;
     }
     for (uint32_t x = 0u; x < 3u; x++) {
-        const uint32_t mag = (g.dr[x] < 0) ? 0u - (uint32_t)g.dr[x] : (uint32_t)g.dr[x];
+        const uint32_t mag = ((int32_t)g.dr[x] < 0) ? 0u - g.dr[x] : g.dr[x];
         if ((int32_t)mag >= lim || (uint64_t)mag * n >= 0x1000000u) {
             return false;
         }
     }
     int32_t ea[3];
-    e_legs(&g, 0u, ea);
-    uint32_t sa = state_bits(ea);
+    uint32_t sa = e_legs(&g, 0u, ea);
     f->s0 = (uint8_t)sa;
     o->held = sa;
     o->need0 = force0 || sa != prev;
@@ -185,45 +231,17 @@ static bool edges_find(const pwm_rt *p, pwm_rt_frame *f, rt_plan_out *o, bool fo
         const uint32_t steps = (to_half - 1u) / inc + 1u;
         const uint32_t b = (steps - 1u < n - a) ? a + steps - 1u : n;
         int32_t eb[3] = {ea[0], ea[1], ea[2]};
-        if (b > a) {
-            e_legs(&g, b, eb);
-        }
-        const uint32_t sb = state_bits(eb);
+        const uint32_t sb = (b > a) ? e_legs(&g, b, eb) : sa;
         /* Inside the segment: each leg's edge, in step order. */
-        uint32_t todo = sa ^ sb;
-        if (todo != 0u) {
-            uint32_t t[3] = {UINT32_MAX, UINT32_MAX, UINT32_MAX};
-            int32_t duty[3] = {0, 0, 0};
-            for (uint32_t x = 0u; x < 3u; x++) {
-                if (((todo >> x) & 1u) != 0u) {
-                    int32_t e[2];
-                    t[x] = edge_find(&g, x, a, b, (pa & 0x80000000u) == 0u, ea[x], e);
-                    duty[x] = pwm_rt_edge_duty(e[0], e[1], p->den_sh);
-                }
-            }
-            while (todo != 0u) {
-                const uint32_t at = (t[0] < t[1]) ? ((t[0] < t[2]) ? t[0] : t[2])
-                                                  : ((t[1] < t[2]) ? t[1] : t[2]);
-                uint32_t mask = 0u;
-                for (uint32_t x = 0u; x < 3u; x++) {
-                    if (t[x] == at) {
-                        mask |= 1u << x;
-                    }
-                }
-                event_edges(o, at, mask, duty, sb);
-                for (uint32_t x = 0u; x < 3u; x++) {
-                    t[x] = (((mask >> x) & 1u) != 0u) ? UINT32_MAX : t[x];
-                }
-                todo &= ~mask;
-            }
+        if ((sa ^ sb) != 0u) {
+            segment_edges(&g, o, a, b, (pa & 0x80000000u) == 0u, ea, sa ^ sb, sb);
         }
         if (b == n) {
             f->s_end = (uint8_t)sb;
             return true;
         }
         /* The step from this half into the next. */
-        e_legs(&g, b + 1u, ea);
-        sa = state_bits(ea);
+        sa = e_legs(&g, b + 1u, ea);
         const uint32_t mask = sb ^ sa;
         if (mask != 0u) {
             int32_t duty[3];
@@ -258,18 +276,18 @@ static void plan_build(pwm_rt *p, uint32_t c, uint32_t ph, const pwm_rt_ramp *ra
     if (UUV_LEAN_IMAGE != 0 || !edges_find(p, f, &o, force0, prev)) {
         int32_t e[3];
         pwm_rt_e_at(f, p->inc_c, 0u, e);
-        f->s0 = (uint8_t)state_bits(e);
+        f->s0 = (uint8_t)state_bits(e[0], e[1], e[2]);
         pwm_rt_e_at(f, p->inc_c, p->n, e);
-        f->s_end = (uint8_t)state_bits(e);
+        f->s_end = (uint8_t)state_bits(e[0], e[1], e[2]);
         o.n = 0u;
-        (void)event_put(&o, 0u, 0u, (uint8_t)PWM_RT_PER_STEP);
+        event_put(&o, 0u, 0u, (uint8_t)PWM_RT_PER_STEP);
         return;
     }
     if (o.need0) {
-        (void)event_put(&o, 0u, o.held, 0u);
+        event_put(&o, 0u, o.held, 0u);
     }
     if (!o.full) {
-        (void)event_put(&o, p->n, 0u, (uint8_t)PWM_RT_PER_STEP);
+        event_set(&o.ev[o.n], p->n, 0u, (uint8_t)PWM_RT_PER_STEP, 0, 0, 0);
     }
 }
 
