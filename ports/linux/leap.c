@@ -21,6 +21,11 @@ enum {
 #define NX 11 /* the state part of z; the rest are inputs held over a leap */
 #define NCLAMP 7 /* z[0..6] are clamped (leap.h) */
 
+/* Whether z's component c is a voltage (else a current): the coarse bound's two kinds. */
+static bool z_volt(int c) {
+    return c == Z_VC_A || c == Z_VC_B || c == Z_VDC || c == Z_E_A || c == Z_E_B || c == Z_EV;
+}
+
 /* A filter phase's components in z. */
 static const int z_il[2] = {Z_IL_A, Z_IL_B};
 static const int z_vc[2] = {Z_VC_A, Z_VC_B};
@@ -55,10 +60,13 @@ static const int z_jsh[2] = {Z_JSH_A, Z_JSH_B};
 /*
  * One table entry, in blocks of eight rows, each column-major (block 0:
  * rows 0..7 of T, block 1: rows 8..15, block 2: the bound's B): a leap
- * reads each block as 14 contiguous groups of eight.
+ * reads each block as 14 contiguous groups of eight. bs: the bound's row
+ * sums over the current columns (bs[0]) and the voltage columns (bs[1])
+ * of z, for a coarser bound that needs only the largest |z| of each kind.
  */
 typedef struct {
     double m[3][NZ][8] __attribute__((aligned(64)));
+    double bs[2][8] __attribute__((aligned(64)));
 } leap_entry;
 
 #define T_AT(e, c, r) ((e)->m[(r) >> 3][c][(r) & 7])
@@ -227,6 +235,11 @@ static void build_to(leap_tables *L, unsigned s, uint32_t k) {
                 B_AT(cur, c, i) = kk * L->qmax[s][c][i];
             }
         }
+        for (int c = 0; c < NZ; c++) {
+            for (int i = 0; i < NB; i++) {
+                cur->bs[z_volt(c) ? 1 : 0][i] += B_AT(cur, c, i);
+            }
+        }
         L->st.entries++;
     }
     L->built[s] = k;
@@ -335,6 +348,11 @@ static const double bound_lim[NB] __attribute__((aligned(64))) = {
 };
 
 #if LEAP_AVX2
+/* All bits set where z's component is a voltage (z_volt()), over z's 16 padded places. */
+static const int64_t volt_mask[16] __attribute__((aligned(64))) = {
+    0, -1, 0, 0, -1, 0, -1, 0, 0, 0, 0, -1, -1, -1, 0, 0,
+};
+
 /*
  * out = M z for a block of eight rows (magnitude: M |z|), as four sums (the
  * columns by their index mod 4) added in a tree, so that each chain of
@@ -363,9 +381,35 @@ static inline void block8(const double (*m)[8], const double *z, bool magnitude,
 }
 #endif
 
-/* y = T z (16 rows) and bnd = B |z| (8 rows) of entry en. */
-static void product(const leap_entry *en, const double *z, double *y, double *bnd) {
 #if LEAP_AVX2
+/* The largest of each lane's four values, in every lane. */
+static inline __m256d hmax4(__m256d v) {
+    const __m256d h = _mm256_max_pd(v, _mm256_permute2f128_pd(v, v, 1));
+    return _mm256_max_pd(h, _mm256_permute_pd(h, 5));
+}
+
+/* Whether max(|z|, |y|) + bnd is within the limits on rows 0..7 (false for a NaN too). */
+static inline bool bound_in(const double *z, const double *y, const __m256d bnd[2]) {
+    const __m256d mag = _mm256_castsi256_pd(_mm256_set1_epi64x(0x7FFFFFFFFFFFFFFF));
+    bool ok = true;
+    for (int h = 0; h < 2; h++) {
+        const __m256d a0 = _mm256_and_pd(_mm256_load_pd(z + 4 * h), mag);
+        const __m256d a1 = _mm256_and_pd(_mm256_load_pd(y + 4 * h), mag);
+        const __m256d hi = _mm256_add_pd(_mm256_max_pd(a0, a1), bnd[h]);
+        /* Ordered, non-signalling: false for a NaN too. */
+        const __m256d in = _mm256_cmp_pd(hi, _mm256_load_pd(bound_lim + 4 * h), _CMP_LE_OQ);
+        ok = ok && (_mm256_movemask_pd(in) == 0xF);
+    }
+    return ok;
+}
+
+/*
+ * y = T z (16 rows) of entry en, and whether the bound allows the leap:
+ * first the coarse one, B |z| <= bs[0] max |z_I| + bs[1] max |z_V| (the
+ * largest current and voltage of z; B is not negative), else B |z| itself.
+ * z: 16 values, the last two zero.
+ */
+static bool product_bounded(const leap_entry *en, const double *z, double *y) {
     /* Two sets of sums (even and odd columns), so that each chain of products is half as
      * long: the leap's latency, which the next step waits for. */
     /* A block at a time: the empty asm keeps the compiler from holding one block's
@@ -374,8 +418,36 @@ static void product(const leap_entry *en, const double *z, double *y, double *bn
     __asm__ volatile("" : : "r"(z) : "memory");
     block8(en->m[1], z, false, y + 8);
     __asm__ volatile("" : : "r"(z) : "memory");
-    block8(en->m[2], z, true, bnd);
+    const __m256d mag = _mm256_castsi256_pd(_mm256_set1_epi64x(0x7FFFFFFFFFFFFFFF));
+    __m256d zi = _mm256_setzero_pd();
+    __m256d zv = _mm256_setzero_pd();
+    for (int q = 0; q < 4; q++) {
+        const __m256d a = _mm256_and_pd(_mm256_load_pd(z + 4 * q), mag);
+        const __m256d v =
+            _mm256_castsi256_pd(_mm256_load_si256((const __m256i *)(const void *)(volt_mask + 4 * q)));
+        zi = _mm256_max_pd(zi, _mm256_andnot_pd(v, a));
+        zv = _mm256_max_pd(zv, _mm256_and_pd(v, a));
+    }
+    zi = hmax4(zi);
+    zv = hmax4(zv);
+    __m256d bnd[2];
+    for (int h = 0; h < 2; h++) {
+        bnd[h] = _mm256_add_pd(_mm256_mul_pd(_mm256_load_pd(en->bs[0] + 4 * h), zi),
+                               _mm256_mul_pd(_mm256_load_pd(en->bs[1] + 4 * h), zv));
+    }
+    if (bound_in(z, y, bnd)) {
+        return true;
+    }
+    double b[NB] __attribute__((aligned(64)));
+    __asm__ volatile("" : : "r"(z) : "memory");
+    block8(en->m[2], z, true, b);
+    bnd[0] = _mm256_load_pd(b);
+    bnd[1] = _mm256_load_pd(b + 4);
+    return bound_in(z, y, bnd);
+}
 #else
+/* y = T z (16 rows) and bnd = B |z| (8 rows) of entry en. */
+static void product(const leap_entry *en, const double *z, double *y, double *bnd) {
     for (int r = 0; r < NR; r++) {
         y[r] = 0.0;
     }
@@ -392,8 +464,8 @@ static void product(const leap_entry *en, const double *z, double *y, double *bn
             bnd[r] += B_AT(en, c, r) * ac;
         }
     }
-#endif
 }
+#endif
 
 /*
  * k steps of switch state s as one map, if the bound allows (leap.h):
@@ -414,26 +486,20 @@ static bool leap_take(leap_tables *L, drive_segment *d, unsigned s, uint32_t k, 
         ps->ph[1].j_sh, d->i_fast[0], d->i_fast[1],  d->e[0],
         d->e[1],       d->in.battery.e_v,
     };
-    double z[NZ] __attribute__((aligned(64)));
+    double z[16] __attribute__((aligned(64)));
     for (int c = 0; c < NZ; c++) {
         z[c] = (double)zf[c];
     }
+    z[14] = 0.0;
+    z[15] = 0.0;
     double y[NR] __attribute__((aligned(64)));
+    /* The bound on rows 0..7: max(|z|, |y|) + the second-difference term. */
+#if LEAP_AVX2
+    const bool ok = product_bounded(en, z, y);
+#else
     double bnd[NB] __attribute__((aligned(64)));
     product(en, z, y, bnd);
-    /* The bound on rows 0..7: max(|z|, |y|) + the second-difference term. */
     bool ok = true;
-#if LEAP_AVX2
-    const __m256d mag = _mm256_castsi256_pd(_mm256_set1_epi64x(0x7FFFFFFFFFFFFFFF));
-    for (int h = 0; h < 2; h++) {
-        const __m256d a0 = _mm256_and_pd(_mm256_load_pd(z + 4 * h), mag);
-        const __m256d a1 = _mm256_and_pd(_mm256_load_pd(y + 4 * h), mag);
-        const __m256d hi = _mm256_add_pd(_mm256_max_pd(a0, a1), _mm256_load_pd(bnd + 4 * h));
-        /* Ordered, non-signalling: false for a NaN too. */
-        const __m256d in = _mm256_cmp_pd(hi, _mm256_load_pd(bound_lim + 4 * h), _CMP_LE_OQ);
-        ok = ok && (_mm256_movemask_pd(in) == 0xF);
-    }
-#else
     for (int i = 0; i < NB; i++) {
         const double a0 = fabs(z[i]);
         const double a1 = fabs(y[i]);
