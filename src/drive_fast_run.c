@@ -3,9 +3,11 @@
  * either numeric build. On the real-time path (switching inverter without
  * dead time, held EMF, mean or sampled coupling)
  * the fields the real-time step uses (drive_rt_step.h, the step
- * drive_fast_tick() takes) are copied into a local drive, stepped n times
+ * drive_fast_tick() takes) are copied into locals, stepped n times
  * and copied back, so that they stay in registers between the steps
- * instead of going through the drive in memory each step. Any other path
+ * instead of going through the drive in memory each step; with the
+ * sub-step modulator the frame plan's held steps go as runs of their own
+ * (drive_rt_held_on()), its event steps one by one. Any other path
  * takes n drive_fast_step()s. tests/unit/test_executive.c checks that
  * both give the same bits.
  */
@@ -15,38 +17,50 @@
 #include "drive_segment.h"
 
 /*
- * n real-time steps on a local drive that holds the step's fields;
- * sampled selects the modulator (a constant at each call, so that each
- * call is its own loop).
+ * n real-time steps on local copies of the step's fields; sampled selects
+ * the modulator (a constant at each call, so that each call is its own
+ * loop). The modulator and the legs' states are copies of their own (the
+ * plan's event step takes their address), the stage's fields others,
+ * which then stay in registers.
  */
 static inline void rt_run(drive_segment *d, uint32_t n, const bool sampled) {
-    drive_segment r; /* only the fields drive_rt_step() uses are set and read */
-    r.cfg.modulator = sampled ? DRIVE_MODULATOR_SAMPLED : DRIVE_MODULATOR_SUBSTEP;
-    r.rt = d->rt;
-    r.ps = d->ps;
-    r.in.battery = d->in.battery;
-    r.NUM_RT_GAIN = d->NUM_RT_GAIN;
-    r.sums.v_dc = d->sums.v_dc;
+    pwm_rt rt = d->rt;
+    int32_t s[3] = {d->s[0], d->s[1], d->s[2]};
+    DRIVE_NUM(power_stage) ps = d->ps;
+    const DRIVE_NUM(ps_battery) bat = d->in.battery;
+    num_val i_fast[2] = {d->i_fast[0], d->i_fast[1]};
+    const num_val e[2] = {d->e[0], d->e[1]};
+    num_sum v_cap[2] = {d->sums.v_cap[0], d->sums.v_cap[1]};
+    num_sum v_dc = d->sums.v_dc;
+    drive_rt_on r = {&rt, s, sampled, &ps, &bat, i_fast, e, d->NUM_RT_GAIN, v_cap, &v_dc};
+    if (sampled) {
+        for (uint32_t k = 0u; k < n; k++) {
+            drive_rt_step_on(&r);
+        }
+    } else {
+        /* The plan's held steps as runs of them, its event steps one by one. */
+        uint32_t k = 0u;
+        while (k < n) {
+            const uint32_t held = drive_rt_held(&rt);
+            const uint32_t m = (held < n - k) ? held : n - k;
+            if (m == 0u) {
+                drive_rt_step_on(&r);
+                k++;
+            } else {
+                drive_rt_held_on(&r, m);
+                k += m;
+            }
+        }
+    }
+    d->rt = rt;
+    d->ps = ps;
+    d->sums.v_dc = v_dc;
     for (int x = 0; x < 3; x++) {
-        r.s[x] = d->s[x];
+        d->s[x] = s[x];
     }
     for (int x = 0; x < 2; x++) {
-        r.i_fast[x] = d->i_fast[x];
-        r.e[x] = d->e[x];
-        r.sums.v_cap[x] = d->sums.v_cap[x];
-    }
-    for (uint32_t k = 0u; k < n; k++) {
-        drive_rt_step(&r);
-    }
-    d->rt = r.rt;
-    d->ps = r.ps;
-    d->sums.v_dc = r.sums.v_dc;
-    for (int x = 0; x < 3; x++) {
-        d->s[x] = r.s[x];
-    }
-    for (int x = 0; x < 2; x++) {
-        d->i_fast[x] = r.i_fast[x];
-        d->sums.v_cap[x] = r.sums.v_cap[x];
+        d->i_fast[x] = i_fast[x];
+        d->sums.v_cap[x] = v_cap[x];
     }
 }
 

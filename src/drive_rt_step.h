@@ -5,20 +5,22 @@
  * held over the frame, no faults (the drive's real-time path).
  *
  *   modulator   the real-time modulator's duties (pwm_rt.h): sub-step or sampled;
- *   stage       the power stage's step (power_stage_fast.h): the inverter,
- *               then per filter phase its states, at once followed by the
- *               motor's fast companion of that phase, i + (v - e) gain,
- *               and the frame sum of v, so that little of the phase stays
- *               alive in registers for the next; then the DC link and its
- *               frame sum.
+ *   stage       the power stage's step (power_stage_fast.h): the legs'
+ *               factors of the duties and the inverter, then per filter
+ *               phase its states, at once followed by the motor's fast
+ *               companion of that phase, i + (v - e) gain, and the frame
+ *               sum of v, so that little of the phase stays alive in
+ *               registers for the next; then the DC link and its frame sum.
  *
- * It reads and writes only these fields of the drive: cfg.modulator, rt,
- * s, ps, in.battery, i_fast, e, the gain (NUM_RT_GAIN), sums.v_cap,
- * sums.v_dc.
+ * It reads and writes only these fields of the drive (drive_rt_on):
+ * cfg.modulator, rt, s, ps, in.battery, i_fast, e, the gain
+ * (NUM_RT_GAIN), sums.v_cap, sums.v_dc.
  * drive_fast_tick() (drive_segment.c) takes it on the drive itself, the
- * interrupt's work; drive_fast_run() (drive_fast_run.c) on a local drive
- * holding copies of these fields only, which the compiler keeps in
- * registers over a run of steps. The Thumb-2 kernel of the fixed M4 and
+ * interrupt's work; drive_fast_run() (drive_fast_run.c) on local copies
+ * of these fields, which the compiler keeps in registers over a run of
+ * steps, and there takes the frame plan's held steps as runs of their
+ * own (drive_rt_held_on(): the same duties, their factors formed once a
+ * run; tests/unit/test_executive.c checks the bits). The Thumb-2 kernel of the fixed M4 and
  * M7 images (ports/cortexm/fast_kernel_v7m.S) computes the same step with
  * the sub-step modulator and its frame plan, tested against it
  * (tests/unit/test_fast_kernel.c); with the sampled modulator the images
@@ -43,31 +45,96 @@
 #include "models/drive/inverter/power_stage_fast.h"
 #include "models/drive/pwm/pwm_rt.h"
 
-/* Filter phase x of the step, its fast companion and its frame sum. */
-static inline void drive_rt_phase(drive_segment *d, DRIVE_NUM(ps_fast) *f, int x) {
-    DRIVE_NUM(power_stage) *ps = &d->ps;
-    DRIVE_NUM(ps_fast_phase)(ps, f, x, d->i_fast[x]);
-    const num_val v = ps->ph[x].v_c;
-    d->i_fast[x] = num_companion_rt(d->i_fast[x], v, d->e[x], d->NUM_RT_GAIN);
-    d->sums.v_cap[x] += v;
+/*
+ * What the step works on: these fields of a drive (drive_rt_step()), or a
+ * run's copies of them (drive_fast_run.c), in locals apart from the
+ * modulator's, whose address the plan's event step takes, so that the
+ * stage's stay in registers.
+ */
+typedef struct {
+    pwm_rt *rt;
+    int32_t *s;                       /* the legs' states, 3 */
+    bool sampled;                     /* the modulator: sampled, or sub-step */
+    DRIVE_NUM(power_stage) *ps;
+    const DRIVE_NUM(ps_battery) *bat;
+    num_val *i_fast;                  /* the fast companion's currents, 2 */
+    const num_val *e;                 /* its EMF, 2 */
+    num_val gain;                     /* its gain (NUM_RT_GAIN) */
+    num_sum *v_cap;                   /* the frame sums, 2 ... */
+    num_sum *v_dc;                    /* ... and 1 */
+} drive_rt_on;
+
+/*
+ * Filter phase x of the step, its fast companion and its frame sum. The
+ * phase and the stage are inlined wherever they are used (GCC takes them
+ * out of line otherwise, the phase on the float targets, the stage in the
+ * fixed desk's runs, passing r): r's pointers are then the drive's fields
+ * or the run's locals.
+ */
+static inline void drive_rt_phase(drive_rt_on *r, DRIVE_NUM(ps_fast) *f, int x)
+    __attribute__((always_inline));
+static inline void drive_rt_phase(drive_rt_on *r, DRIVE_NUM(ps_fast) *f, int x) {
+    DRIVE_NUM(ps_fast_phase)(r->ps, f, x, r->i_fast[x]);
+    const num_val v = r->ps->ph[x].v_c;
+    r->i_fast[x] = num_companion_rt(r->i_fast[x], v, r->e[x], r->gain);
+    r->v_cap[x] += v;
 }
 
-/* The real-time modulator's duties for the step (pwm_rt.h): sampled or sub-step, as configured. */
-static inline void drive_rt_duties(drive_segment *d, int32_t duty[3]) {
-    pwm_rt_duties(&d->rt, d->cfg.modulator == DRIVE_MODULATOR_SAMPLED, d->s, duty);
-}
-
-/* One step. */
-static inline void drive_rt_step(drive_segment *d) {
-    DRIVE_NUM(power_stage) *ps = &d->ps;
+/* The stage's part of a step with the legs' factors l (power_stage_fast.h). */
+static inline void drive_rt_stage(drive_rt_on *r, const DRIVE_NUM(ps_legs) *l)
+    __attribute__((always_inline));
+static inline void drive_rt_stage(drive_rt_on *r, const DRIVE_NUM(ps_legs) *l) {
+    DRIVE_NUM(power_stage) *ps = r->ps;
     DRIVE_NUM(ps_fast) f;
+    DRIVE_NUM(ps_fast_begin)(ps, l, &f);
+    drive_rt_phase(r, &f, 0);
+    drive_rt_phase(r, &f, 1);
+    DRIVE_NUM(ps_fast_end)(ps, r->bat, &f);
+    *r->v_dc += ps->v_dc;
+}
+
+/* One step on r. */
+static inline void drive_rt_step_on(drive_rt_on *r) {
     int32_t duty[3];
-    drive_rt_duties(d, duty);
-    DRIVE_NUM(ps_fast_begin)(ps, duty, &f);
-    drive_rt_phase(d, &f, 0);
-    drive_rt_phase(d, &f, 1);
-    DRIVE_NUM(ps_fast_end)(ps, &d->in.battery, &f);
-    d->sums.v_dc += ps->v_dc;
+    DRIVE_NUM(ps_legs) l;
+    pwm_rt_duties(r->rt, r->sampled, r->s, duty);
+    DRIVE_NUM(ps_fast_legs)(duty, &l);
+    drive_rt_stage(r, &l);
+}
+
+/* One step on the drive d. */
+static inline void drive_rt_step(drive_segment *d) {
+    const bool sampled = d->cfg.modulator == DRIVE_MODULATOR_SAMPLED;
+    drive_rt_on r = {&d->rt,    d->s, sampled,         &d->ps,        &d->in.battery,
+                     d->i_fast, d->e, d->NUM_RT_GAIN, d->sums.v_cap, &d->sums.v_dc};
+    drive_rt_step_on(&r);
+}
+
+/*
+ * The steps from now in which the sub-step modulator's frame plan applies
+ * the legs' held states (pwm_rt_substep(): every step before the plan's
+ * next event, none in a frame computed step by step), modulo 2^32 as the
+ * plan counts them; 0 at an event step and in a lean image.
+ */
+static inline uint32_t drive_rt_held(const pwm_rt *p) {
+    return (UUV_LEAN_IMAGE != 0) ? 0u : p->next_at - p->k;
+}
+
+/*
+ * m steps (1 <= m <= drive_rt_held(r->rt), sub-step modulator) on the
+ * held states: the duties pwm_rt_substep() applies in each of them, their
+ * legs' factors formed once; then the modulator is m steps on
+ * (pwm_rt_skip(), which leaves the plan's next event as it is).
+ */
+static inline void drive_rt_held_on(drive_rt_on *r, uint32_t m) {
+    const int32_t duty[3] = {r->s[0] * PWM_RT_DUTY_ONE, r->s[1] * PWM_RT_DUTY_ONE,
+                             r->s[2] * PWM_RT_DUTY_ONE};
+    DRIVE_NUM(ps_legs) l;
+    DRIVE_NUM(ps_fast_legs)(duty, &l);
+    for (uint32_t j = 0u; j < m; j++) {
+        drive_rt_stage(r, &l);
+    }
+    pwm_rt_skip(r->rt, m);
 }
 
 #endif /* UUV_DRIVE_RT_STEP_H */

@@ -138,7 +138,9 @@ static bool same_results(const desk_result *a, const desk_result *b) {
 
 /*
  * exec_desk_run() against exec_desk_step(), the same bits: the real-time
- * path (runs of steps), staggered, the filter coupling and the event
+ * path (runs of steps: with the sub-step modulator the frame plan's held
+ * steps in runs of their own, cut where a run of ticks ends; the sampled
+ * modulator), staggered, the filter coupling and the event
  * inverter (the general step), the averaged layer (its lean frames,
  * desk_run_averaged()), single-rate, with runs of 1, 7 and as many ticks as
  * it likes. 0.2 s, two slow frames, with a speed command at the first slow
@@ -177,13 +179,15 @@ static void test_desk_runs(const exec_config *base) {
         coupling_down down;
         coupling_up up;
         bool single_rate;
+        drive_modulator modulator;
     } cases[] = {
-        {DRIVE_INVERTER_SWITCHING, COUPLE_ZOH, COUPLE_AVG, false},
-        {DRIVE_INVERTER_SWITCHING, COUPLE_STAGGER, COUPLE_SAMPLE, false},
-        {DRIVE_INVERTER_SWITCHING, COUPLE_FOH, COUPLE_FILTER, false},
-        {DRIVE_INVERTER_EVENT, COUPLE_ZOH, COUPLE_AVG, false},
-        {DRIVE_INVERTER_AVERAGED, COUPLE_ZOH, COUPLE_AVG, false},
-        {DRIVE_INVERTER_SWITCHING, COUPLE_ZOH, COUPLE_AVG, true},
+        {DRIVE_INVERTER_SWITCHING, COUPLE_ZOH, COUPLE_AVG, false, DRIVE_MODULATOR_SUBSTEP},
+        {DRIVE_INVERTER_SWITCHING, COUPLE_ZOH, COUPLE_AVG, false, DRIVE_MODULATOR_SAMPLED},
+        {DRIVE_INVERTER_SWITCHING, COUPLE_STAGGER, COUPLE_SAMPLE, false, DRIVE_MODULATOR_SUBSTEP},
+        {DRIVE_INVERTER_SWITCHING, COUPLE_FOH, COUPLE_FILTER, false, DRIVE_MODULATOR_SUBSTEP},
+        {DRIVE_INVERTER_EVENT, COUPLE_ZOH, COUPLE_AVG, false, DRIVE_MODULATOR_SUBSTEP},
+        {DRIVE_INVERTER_AVERAGED, COUPLE_ZOH, COUPLE_AVG, false, DRIVE_MODULATOR_SUBSTEP},
+        {DRIVE_INVERTER_SWITCHING, COUPLE_ZOH, COUPLE_AVG, true, DRIVE_MODULATOR_SUBSTEP},
     };
     static const uint32_t runs[] = {UINT32_MAX, 7u, 1u};
     static desk_result one, many;
@@ -201,6 +205,7 @@ static void test_desk_runs(const exec_config *base) {
         cfg.down = cases[c].down;
         cfg.up = cases[c].up;
         cfg.single_rate = cases[c].single_rate;
+        cfg.modulator = cases[c].modulator;
         if (!drive_options_built(cfg.inverter, cfg.down, cfg.up, cfg.energy_audit)) {
             UT_EQ_INT(exec_init(&ex, &cfg, &scn), EXEC_ERR_LAYER); /* not in a lean image */
             continue;
@@ -361,7 +366,8 @@ void suite_executive(void) {
     }
 
     UT_TEST("the desk's runs of ticks (exec_desk_run) give the bits of one tick at a time: "
-            "switching, staggered, filter coupling, event, averaged, single-rate");
+            "switching (sub-step, sampled), staggered, filter coupling, event, averaged, "
+            "single-rate");
     test_desk_runs(&cfg);
     UT_CHECK(scenario_parse(&scn, text, ut_text_len(text), &err));
 

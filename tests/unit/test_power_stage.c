@@ -997,6 +997,88 @@ static void test_fused_step(int fixed, int substep, double amp_a, uint32_t steps
     UT_CHECK((amp_a > 256.0) == (sat > 0u));
 }
 
+/*
+ * Held states (every duty 0 or 32768, the frame plan's held steps and the
+ * sampled modulator's): the legs' factors the stage forms of them
+ * (ps_fast_legs_*) are the held states' small integers, so its step is the
+ * held-state arithmetic bit for bit: for all eight states, over v_dc from
+ * -1 to 1 per unit (and 0, -0, 600 V), the inverter voltages are n_x v_dc / 3
+ * (n_x = 2 s_x - s_y - s_c) with v_dc / 3 rounded as the stage rounds it,
+ * and the DC-link current is floor((T + 1) / 2) of T = (s_a - s_c) S_a +
+ * (s_b - s_c) S_b (fixed); the float factors are (float)n_x and
+ * (float)(s_x - s_c) in every bit, zeros +0, and the voltages v3 n_x.
+ */
+typedef union {
+    float f;
+    uint32_t u;
+} f32_bits;
+
+static bool same_f32(float a, float b) {
+    const f32_bits x = {a};
+    const f32_bits y = {b};
+    return x.u == y.u;
+}
+
+static void test_held_legs(void) {
+    static const int32_t v_q[] = {0, 1, -1, 3, -3, 0x5555555, PS_Q28_ONE, -PS_Q28_ONE,
+                                  150994944 /* 576 V */, -150994943, 268435455, 12345679};
+    static const float v_f[] = {0.0f, -0.0f, 1.0f, -1.0f, 3.0f, 600.0f, 600.0001f,
+                                -599.99994f, 1024.0f, -1024.0f, 1e-30f, 333.33334f};
+    bool same_q = true;
+    bool same_f = true;
+    for (uint32_t b = 0u; b < 8u; b++) {
+        const int32_t st[3] = {(int32_t)(b & 1u), (int32_t)((b >> 1) & 1u),
+                               (int32_t)((b >> 2) & 1u)};
+        const int32_t duty[3] = {st[0] * PWM_RT_DUTY_ONE, st[1] * PWM_RT_DUTY_ONE,
+                                 st[2] * PWM_RT_DUTY_ONE};
+        const int32_t n_a = 2 * st[0] - st[1] - st[2];
+        const int32_t n_b = 2 * st[1] - st[0] - st[2];
+        const int32_t dd_a = st[0] - st[2];
+        const int32_t dd_b = st[1] - st[2];
+        ps_legs_q lq;
+        ps_legs_f32 lf;
+        ps_fast_legs_q(duty, &lq);
+        ps_fast_legs_f32(duty, &lf);
+        same_f = same_f && same_f32(lf.w[0], (float)n_a) && same_f32(lf.w[1], (float)n_b) &&
+                 same_f32(lf.dd[0], (float)dd_a) && same_f32(lf.dd[1], (float)dd_b);
+        for (size_t i = 0; i < sizeof v_q / sizeof v_q[0]; i++) {
+            power_stage_q q;
+            ps_battery_q bat;
+            ps_fast_q fq;
+            UT_CHECK(power_stage_init_q(&q, &power_stage_params_default, STEP_NS, 600.0) ==
+                     PS_OK);
+            power_stage_battery_q(&q, 2.0, 1200.0, &bat);
+            q.v_dc = v_q[i];
+            ps_fast_begin_q(&q, &lq, &fq);
+            const int32_t v3 = ps_hi_q(ps_mac_q(ps_acc_q(0), v_q[i], 0x55555555));
+            same_q = same_q && q.u[0] == n_a * v3 && q.u[1] == n_b * v3;
+            /* The DC-link current of the phases' currents (S_x of up to +-2 per unit). */
+            const int32_t i0[2] = {q.ph[0].i_l, q.ph[1].i_l};
+            q.ph[0].i_l = v_q[i];
+            q.ph[1].i_l = -v_q[(i + 5u) % (sizeof v_q / sizeof v_q[0])];
+            const int32_t s_a = i0[0] + q.ph[0].i_l;
+            const int32_t s_b = i0[1] + q.ph[1].i_l;
+            fq.t = (int64_t)fq.dd[0] * s_a + (int64_t)fq.dd[1] * s_b;
+            ps_fast_end_q(&q, &bat, &fq);
+            const int64_t t = (int64_t)dd_a * s_a + (int64_t)dd_b * s_b;
+            same_q = same_q && (int64_t)q.i_dc == fp_shr_floor_i64(t + 1, 1u);
+        }
+        for (size_t i = 0; i < sizeof v_f / sizeof v_f[0]; i++) {
+            power_stage_f32 f;
+            ps_fast_f32 ff;
+            UT_CHECK(power_stage_init_f32(&f, &power_stage_params_default, STEP_NS, 600.0) ==
+                     PS_OK);
+            f.v_dc = v_f[i];
+            ps_fast_begin_f32(&f, &lf, &ff);
+            const float v3 = v_f[i] * (1.0f / 3.0f);
+            same_f = same_f && same_f32(f.u[0], v3 * (float)n_a) &&
+                     same_f32(f.u[1], v3 * (float)n_b);
+        }
+    }
+    UT_CHECK(same_q);
+    UT_CHECK(same_f);
+}
+
 void suite_power_stage(void) {
     int fixed;
     UT_TEST("filter companion: |H| within 0.5 % and phase within 0.5 deg of the analytic "
@@ -1041,4 +1123,7 @@ void suite_power_stage(void) {
             test_fused_step(fixed, substep, 400.0, 2000u);
         }
     }
+    UT_TEST("held states: the legs' factors of duties 0 and 32768 are the states' integers, "
+            "the step the held-state arithmetic bit for bit (all eight states)");
+    test_held_legs();
 }

@@ -9,7 +9,13 @@
  * current: sub-step switching, or held states as duties of 0 or 32768.
  * Only the work is arranged for the tick, never the arithmetic:
  *
- *   - The inverter voltages are ps_inverter_q()'s; with held duties its
+ *   - What the step takes from the duties is its legs' factors (ps_legs_*,
+ *     ps_fast_legs_*): the inverter's leg sums w_x = 2 d_x - d_y - d_c
+ *     and the DC-link current's d_x - d_c, for x = a, b. A run of steps
+ *     with the same duties forms them once (the held states of the
+ *     modulator's frame plan, drive_rt_step.h); they are the duties'
+ *     arithmetic in either case, so there is one form of the step.
+ *   - The inverter voltages are ps_inverter_w_q()'s; with held duties its
  *     rounded product is exactly n_x v_dc / 3.
  *   - The DC-link current's product sum is formed phase by phase as
  *     T = dd_a S_a + dd_b S_b in 64 bits (dd_x = d_x - d_c in Q15 units,
@@ -30,6 +36,12 @@
 #include "models/drive/inverter/power_stage.h"
 #include "models/drive/inverter/power_stage_nodes.h"
 
+/* The legs' factors of a step (fixed twin), Q15 units: what its duties give the stage. */
+typedef struct {
+    int32_t w[2];  /* the leg sums 2 d_x - d_y - d_c, x = a, b, in [-65536, 65536] */
+    int32_t dd[2]; /* d_a - d_c, d_b - d_c */
+} ps_legs_q;
+
 /* What the pieces of one step carry between them (fixed twin). */
 typedef struct {
     int32_t dd[2]; /* d_a - d_c, d_b - d_c, Q15 units */
@@ -37,11 +49,19 @@ typedef struct {
     uint32_t sat;  /* the stage's clamp count, kept in a local */
 } ps_fast_q;
 
-/* Start of a step with the duties duty[x] (Q15, 0..32768): inverter voltages. */
-static inline void ps_fast_begin_q(power_stage_q *ps, const int32_t duty[3], ps_fast_q *f) {
-    ps_inverter_q(ps->v_dc, duty, &ps->u[0], &ps->u[1]);
-    f->dd[0] = duty[0] - duty[2];
-    f->dd[1] = duty[1] - duty[2];
+/* The legs' factors of the duties duty[x] (Q15, 0..32768). */
+static inline void ps_fast_legs_q(const int32_t duty[3], ps_legs_q *l) {
+    l->w[0] = ps_leg_sum_q(duty[0], duty[1], duty[2]);
+    l->w[1] = ps_leg_sum_q(duty[1], duty[0], duty[2]);
+    l->dd[0] = duty[0] - duty[2];
+    l->dd[1] = duty[1] - duty[2];
+}
+
+/* Start of a step with the legs' factors l: inverter voltages. */
+static inline void ps_fast_begin_q(power_stage_q *ps, const ps_legs_q *l, ps_fast_q *f) {
+    ps_inverter_w_q(ps->v_dc, l->w[0], l->w[1], &ps->u[0], &ps->u[1]);
+    f->dd[0] = l->dd[0];
+    f->dd[1] = l->dd[1];
     f->t = 0;
     f->sat = ps->sat_count;
 }
@@ -80,8 +100,10 @@ static inline void ps_fast_end_q(power_stage_q *ps, const ps_battery_q *bat, con
  */
 static inline void ps_fast_step_q(power_stage_q *ps, const ps_battery_q *bat, const int32_t duty[3],
                                   int32_t im_a, int32_t im_b) {
+    ps_legs_q l;
     ps_fast_q f;
-    ps_fast_begin_q(ps, duty, &f);
+    ps_fast_legs_q(duty, &l);
+    ps_fast_begin_q(ps, &l, &f);
     ps_fast_phase_q(ps, &f, 0, im_a);
     ps_fast_phase_q(ps, &f, 1, im_b);
     ps_fast_end_q(ps, bat, &f);
@@ -92,18 +114,34 @@ static inline void ps_fast_step_q(power_stage_q *ps, const ps_battery_q *bat, co
  * with the duties duty[x] / 32768, its expressions rounded in its order.
  */
 typedef struct {
+    float w[2];  /* the leg sums (2 d_x - d_y) - d_c, x = a, b */
+    float dd[2]; /* d_a - d_c, d_b - d_c */
+} ps_legs_f32;
+
+typedef struct {
     float dd[2];  /* d_a - d_c, d_b - d_c */
     float t;      /* the DC-link current's sum, formed phase by phase */
     uint32_t sat; /* the stage's clamp count, kept in a local */
 } ps_fast_f32;
 
-/* The duties in [0, 1], from the modulator's Q15 (exact in single precision). */
-static inline void ps_fast_begin_f32(power_stage_f32 *ps, const int32_t duty[3], ps_fast_f32 *f) {
+/*
+ * The legs' factors of the duties duty[x] (the modulator's Q15, 0..32768),
+ * as power_stage_step_f32() forms them of duty[x] / 32768 (exact in
+ * single precision).
+ */
+static inline void ps_fast_legs_f32(const int32_t duty[3], ps_legs_f32 *l) {
     const float dq[3] = {(float)duty[0] * (1.0f / 32768.0f), (float)duty[1] * (1.0f / 32768.0f),
                          (float)duty[2] * (1.0f / 32768.0f)};
-    ps_inverter_f32(ps->v_dc, dq, &ps->u[0], &ps->u[1]);
-    f->dd[0] = dq[0] - dq[2];
-    f->dd[1] = dq[1] - dq[2];
+    l->w[0] = ps_leg_sum_f32(dq[0], dq[1], dq[2]);
+    l->w[1] = ps_leg_sum_f32(dq[1], dq[0], dq[2]);
+    l->dd[0] = dq[0] - dq[2];
+    l->dd[1] = dq[1] - dq[2];
+}
+
+static inline void ps_fast_begin_f32(power_stage_f32 *ps, const ps_legs_f32 *l, ps_fast_f32 *f) {
+    ps_inverter_w_f32(ps->v_dc, l->w[0], l->w[1], &ps->u[0], &ps->u[1]);
+    f->dd[0] = l->dd[0];
+    f->dd[1] = l->dd[1];
     f->t = 0.0f;
     f->sat = ps->sat_count;
 }
@@ -133,8 +171,10 @@ static inline void ps_fast_end_f32(power_stage_f32 *ps, const ps_battery_f32 *ba
 
 static inline void ps_fast_step_f32(power_stage_f32 *ps, const ps_battery_f32 *bat,
                                     const int32_t duty[3], float im_a, float im_b) {
+    ps_legs_f32 l;
     ps_fast_f32 f;
-    ps_fast_begin_f32(ps, duty, &f);
+    ps_fast_legs_f32(duty, &l);
+    ps_fast_begin_f32(ps, &l, &f);
     ps_fast_phase_f32(ps, &f, 0, im_a);
     ps_fast_phase_f32(ps, &f, 1, im_b);
     ps_fast_end_f32(ps, bat, &f);

@@ -75,18 +75,28 @@ static inline int ps_out_of_range3_q(int32_t x, int32_t y, int32_t z) {
 /*
  * Phase voltages a and b (Q3.28 of 1024 V) of the pole voltages with the
  * common mode removed: u_x = v_dc (2 d_x - d_y - d_z) / 3, duties Q15 with
- * 32768 = 1. v_dc / 3 is formed once (round(2^32 / 3) = 0x55555555); then
- * (8 v_dc / 3) * (w * 2^14) / 2^32 with w = 2 d_x - d_y - d_z in
- * [-65536, 65536]: both factors below 2^31 for |v_dc| <= 1 per unit, the
+ * 32768 = 1, from the leg sums w_x = 2 d_x - d_y - d_z in [-65536, 65536]
+ * (ps_inverter_w_q; ps_inverter_q forms them from the duties). v_dc / 3 is
+ * formed once (round(2^32 / 3) = 0x55555555); then (8 v_dc / 3) * (w *
+ * 2^14) / 2^32: both factors below 2^31 for |v_dc| <= 1 per unit, the
  * product below 2^61. u_c = -u_a - u_b.
  */
-static inline void ps_inverter_q(int32_t v_dc, const int32_t duty[3], int32_t *u_a,
-                                 int32_t *u_b) {
+static inline void ps_inverter_w_q(int32_t v_dc, int32_t w_a, int32_t w_b, int32_t *u_a,
+                                   int32_t *u_b) {
     const int32_t v3x8 = ps_hi_q(ps_mac_q(ps_acc_q(0), v_dc, 0x55555555)) * 8;
-    const int32_t w_a = 2 * duty[0] - duty[1] - duty[2];
-    const int32_t w_b = 2 * duty[1] - duty[0] - duty[2];
     *u_a = ps_hi_q(ps_mac_q(ps_acc_q(0), v3x8, w_a * 16384));
     *u_b = ps_hi_q(ps_mac_q(ps_acc_q(0), v3x8, w_b * 16384));
+}
+
+/* The leg sum 2 d_x - d_y - d_z. */
+static inline int32_t ps_leg_sum_q(int32_t d_x, int32_t d_y, int32_t d_z) {
+    return 2 * d_x - d_y - d_z;
+}
+
+static inline void ps_inverter_q(int32_t v_dc, const int32_t duty[3], int32_t *u_a,
+                                 int32_t *u_b) {
+    ps_inverter_w_q(v_dc, ps_leg_sum_q(duty[0], duty[1], duty[2]),
+                    ps_leg_sum_q(duty[1], duty[0], duty[2]), u_a, u_b);
 }
 
 /*
@@ -199,10 +209,20 @@ static inline float ps_clamp_f32(float x, float lim, uint32_t *sat_count) {
 #define PS_V_LIM_F32 1024.0f /* [V] the fixed twin's range */
 #define PS_I_LIM_F32 256.0f  /* [A] */
 
-static inline void ps_inverter_f32(float v_dc, const float duty[3], float *u_a, float *u_b) {
+/* The fixed twin's, with the leg sums w_x = (2 d_x - d_y) - d_z rounded in that order. */
+static inline void ps_inverter_w_f32(float v_dc, float w_a, float w_b, float *u_a, float *u_b) {
     const float v3 = v_dc * (1.0f / 3.0f);
-    *u_a = v3 * ((2.0f * duty[0] - duty[1]) - duty[2]);
-    *u_b = v3 * ((2.0f * duty[1] - duty[0]) - duty[2]);
+    *u_a = v3 * w_a;
+    *u_b = v3 * w_b;
+}
+
+static inline float ps_leg_sum_f32(float d_x, float d_y, float d_z) {
+    return (2.0f * d_x - d_y) - d_z;
+}
+
+static inline void ps_inverter_f32(float v_dc, const float duty[3], float *u_a, float *u_b) {
+    ps_inverter_w_f32(v_dc, ps_leg_sum_f32(duty[0], duty[1], duty[2]),
+                      ps_leg_sum_f32(duty[1], duty[0], duty[2]), u_a, u_b);
 }
 
 static inline float ps_dc_current_f32(const float duty[3], float s_a, float s_b) {
