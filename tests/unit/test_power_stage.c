@@ -1079,6 +1079,55 @@ static void test_held_legs(void) {
     UT_CHECK(same_f);
 }
 
+/*
+ * The float clamp's one comparison (x^2 > lim^2) against the two it
+ * stands for, at the limits, the floats next to them, far out, the
+ * infinities, NaN and the zeros: the same value (in every bit) and the
+ * same count.
+ */
+static float clamp_two_f32(float x, float lim, uint32_t *sat) {
+    if (x > lim) {
+        (*sat)++;
+        return lim;
+    }
+    if (x < -lim) {
+        (*sat)++;
+        return -lim;
+    }
+    return x;
+}
+
+static void test_clamp_f32(void) {
+    static const float lims[] = {PS_V_LIM_F32, PS_I_LIM_F32};
+    bool same = true;
+    uint32_t clamps = 0u;
+    for (size_t l = 0; l < sizeof lims / sizeof lims[0]; l++) {
+        const float lim = lims[l];
+        f32_bits up = {lim};
+        f32_bits down = {lim};
+        up.u++;   /* the float after lim */
+        down.u--; /* the float before it */
+        f32_bits nan = {0.0f};
+        nan.u = 0x7fc00000u;
+        f32_bits inf = {0.0f};
+        inf.u = 0x7f800000u;
+        const float xs[] = {lim,     -lim,   up.f,   -up.f,  down.f,    -down.f,  0.0f,
+                            -0.0f,   1e-40f, 2.0f * lim, -3.0f * lim, 1e30f, -1e30f,
+                            inf.f,   -inf.f, nan.f,  0.5f * lim};
+        for (size_t i = 0; i < sizeof xs / sizeof xs[0]; i++) {
+            uint32_t a = 0u;
+            uint32_t b = 0u;
+            const float ya = ps_clamp_f32(xs[i], lim, &a);
+            const float yb = clamp_two_f32(xs[i], lim, &b);
+            same = same && same_f32(ya, yb) && a == b;
+            clamps += a;
+        }
+    }
+    ut_info("clamped %u of 34 values, as the two comparisons", (unsigned)clamps);
+    UT_CHECK(same);
+    UT_EQ_INT(clamps, 16u);
+}
+
 void suite_power_stage(void) {
     int fixed;
     UT_TEST("filter companion: |H| within 0.5 % and phase within 0.5 deg of the analytic "
@@ -1126,4 +1175,6 @@ void suite_power_stage(void) {
     UT_TEST("held states: the legs' factors of duties 0 and 32768 are the states' integers, "
             "the step the held-state arithmetic bit for bit (all eight states)");
     test_held_legs();
+    UT_TEST("float clamp: x^2 > lim^2 acts and counts as x > lim or x < -lim, bit for bit");
+    test_clamp_f32();
 }

@@ -194,14 +194,19 @@ static inline void ps_filter_update_q(const ps_coef_q *k, ps_phase_q *x, const p
 
 /* ---- Float twin ---------------------------------------------------------------- */
 
+/*
+ * Clamps x to [-lim, lim] and counts a clamp; NaN passes. lim is a power
+ * of two (the ranges below), so |x| > lim is one product and one
+ * comparison, x^2 > lim^2, rounded or not: lim^2 is exact, |x| <= lim
+ * gives x^2 <= lim^2, which rounds to at most lim^2, and the next float
+ * above lim, lim (1 + 2^-23), gives lim^2 (1 + 2^-22 + 2^-46), which
+ * rounds to at least lim^2 (1 + 2^-22), the float after lim^2;
+ * infinities compare above, NaN does not.
+ */
 static inline float ps_clamp_f32(float x, float lim, uint32_t *sat_count) {
-    if (x > lim) {
+    if ((x * x) > (lim * lim)) {
         fp_count_sat(sat_count);
-        return lim;
-    }
-    if (x < -lim) {
-        fp_count_sat(sat_count);
-        return -lim;
+        return (x > 0.0f) ? lim : -lim;
     }
     return x;
 }
