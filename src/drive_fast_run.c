@@ -18,11 +18,13 @@
 
 /*
  * n real-time steps on local copies of the step's fields; sampled selects
- * the modulator (a constant at each call, so that each call is its own
- * loop). The modulator and the legs' states are copies of their own (the
+ * the modulator (a constant at each call, inlined, so that each call is
+ * its own loop). The modulator and the legs' states are copies of their own (the
  * plan's event step takes their address), the stage's fields others,
  * which then stay in registers.
  */
+static inline void rt_run(drive_segment *d, uint32_t n, const bool sampled)
+    __attribute__((always_inline));
 static inline void rt_run(drive_segment *d, uint32_t n, const bool sampled) {
     pwm_rt rt = d->rt;
     int32_t s[3] = {d->s[0], d->s[1], d->s[2]};

@@ -93,7 +93,8 @@ static inline void drive_rt_stage(drive_rt_on *r, const DRIVE_NUM(ps_legs) *l) {
     *r->v_dc += ps->v_dc;
 }
 
-/* One step on r. */
+/* One step on r (inlined, as the phase and the stage are). */
+static inline void drive_rt_step_on(drive_rt_on *r) __attribute__((always_inline));
 static inline void drive_rt_step_on(drive_rt_on *r) {
     int32_t duty[3];
     DRIVE_NUM(ps_legs) l;
