@@ -16,11 +16,12 @@
  * cfg.modulator, rt, s, ps, in.battery, i_fast, e, the gain
  * (NUM_RT_GAIN), sums.v_cap, sums.v_dc.
  * drive_fast_tick() (drive_segment.c) takes it on the drive itself, the
- * interrupt's work; drive_fast_run() (drive_fast_run.c) on local copies
- * of these fields, which the compiler keeps in registers over a run of
- * steps, and there takes the frame plan's held steps as runs of their
- * own (drive_rt_held_on(): the same duties, their factors formed once a
- * run; tests/unit/test_executive.c checks the bits). The Thumb-2 kernel of the fixed M4 and
+ * interrupt's work; drive_fast_run() (drive_fast_run.c) takes its
+ * modulator ahead over a pass of steps and then its stage part
+ * (drive_rt_stage()) on local copies of the stage's fields, which the
+ * compiler keeps in registers, the frame plan's held steps as runs with
+ * their legs' factors formed once in whole units (ps_fast_held_legs_*:
+ * the same bits; tests/unit/test_executive.c checks the run's). The Thumb-2 kernel of the fixed M4 and
  * M7 images (ports/cortexm/fast_kernel_v7m.S) computes the same step with
  * the sub-step modulator and its frame plan, tested against it
  * (tests/unit/test_fast_kernel.c); with the sampled modulator the images
@@ -119,23 +120,6 @@ static inline void drive_rt_step(drive_segment *d) {
  */
 static inline uint32_t drive_rt_held(const pwm_rt *p) {
     return (UUV_LEAN_IMAGE != 0) ? 0u : p->next_at - p->k;
-}
-
-/*
- * m steps (1 <= m <= drive_rt_held(r->rt), sub-step modulator) on the
- * held states: the duties pwm_rt_substep() applies in each of them, their
- * legs' factors formed once; then the modulator is m steps on
- * (pwm_rt_skip(), which leaves the plan's next event as it is).
- */
-static inline void drive_rt_held_on(drive_rt_on *r, uint32_t m) {
-    const int32_t duty[3] = {r->s[0] * PWM_RT_DUTY_ONE, r->s[1] * PWM_RT_DUTY_ONE,
-                             r->s[2] * PWM_RT_DUTY_ONE};
-    DRIVE_NUM(ps_legs) l;
-    DRIVE_NUM(ps_fast_legs)(duty, &l);
-    for (uint32_t j = 0u; j < m; j++) {
-        drive_rt_stage(r, &l);
-    }
-    pwm_rt_skip(r->rt, m);
 }
 
 #endif /* UUV_DRIVE_RT_STEP_H */

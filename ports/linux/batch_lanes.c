@@ -424,7 +424,7 @@ static inline void lane_step(lanes *L, bool substep) {
     lane_phase(L, 0, dq[0] - dq[2], &t);
     lane_phase(L, 1, dq[1] - dq[2], &t);
     const vf i_dc = 0.5f * t;
-    L->v_dc = lane_clamp(L->v_dc + (L->bat_kg * (L->bat_e - L->v_dc) + L->neg_k_c * i_dc),
+    L->v_dc = lane_clamp(L->v_dc + (L->bat_kg * (L->bat_e - L->v_dc) + L->neg_k_c * t),
                          PS_V_LIM_F32, &L->sat);
     L->i_dc = i_dc;
     L->sum_v_dc += L->v_dc;

@@ -147,7 +147,7 @@ static void step_d(const float key[10], unsigned s, const double z[NZ], double o
         outs[x] = u;
     }
     const double i_dc = 0.5 * t;
-    out[Z_VDC] = z[Z_VDC] + (kg * (z[Z_EV] - z[Z_VDC]) + neg_k_c * i_dc);
+    out[Z_VDC] = z[Z_VDC] + (kg * (z[Z_EV] - z[Z_VDC]) + neg_k_c * t); /* of the sum t */
     out[Z_E_A] = z[Z_E_A];
     out[Z_E_B] = z[Z_E_B];
     out[Z_EV] = z[Z_EV];

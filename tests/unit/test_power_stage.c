@@ -320,7 +320,7 @@ static void test_dclink(int fixed) {
             t.q.v_dc = ps_dclink_step_q(t.q.v_dc, &t.bq, t.q.k.neg_k_c, idc, &sat);
             v = t.q.v_dc * (1024.0 / Q28);
         } else {
-            t.f.v_dc = ps_dclink_step_f32(t.f.v_dc, &t.bf, t.f.k.neg_k_c, (float)i_dc, &sat);
+            t.f.v_dc = ps_dclink_step_f32(t.f.v_dc, &t.bf, t.f.k.neg_k_c, 2.0f * (float)i_dc, &sat);
             v = (double)t.f.v_dc;
         }
         if (k == k_tau) {
@@ -1006,7 +1006,9 @@ static void test_fused_step(int fixed, int substep, double amp_a, uint32_t steps
  * (n_x = 2 s_x - s_y - s_c) with v_dc / 3 rounded as the stage rounds it,
  * and the DC-link current is floor((T + 1) / 2) of T = (s_a - s_c) S_a +
  * (s_b - s_c) S_b (fixed); the float factors are (float)n_x and
- * (float)(s_x - s_c) in every bit, zeros +0, and the voltages v3 n_x.
+ * (float)(s_x - s_c) in every bit, zeros +0, and the voltages v3 n_x. The
+ * held states' own factors (ps_fast_held_legs_*, whole units in the fixed
+ * twin) give the same voltages, DC-link current and DC link.
  */
 typedef union {
     float f;
@@ -1058,10 +1060,21 @@ static void test_held_legs(void) {
             q.ph[1].i_l = -v_q[(i + 5u) % (sizeof v_q / sizeof v_q[0])];
             const int32_t s_a = i0[0] + q.ph[0].i_l;
             const int32_t s_b = i0[1] + q.ph[1].i_l;
+            power_stage_q w = q; /* the same step on the held states' whole-unit factors */
+            ps_fast_q fw;
+            ps_legs_q hq;
+            ps_fast_held_legs_q(st, &hq);
+            w.v_dc = v_q[i];
+            ps_fast_begin_q(&w, &hq, &fw);
+            same_q = same_q && w.u[0] == q.u[0] && w.u[1] == q.u[1] && hq.w[0] == n_a &&
+                     hq.w[1] == n_b && hq.dd[0] == dd_a && hq.dd[1] == dd_b;
             fq.t = (int64_t)fq.dd[0] * s_a + (int64_t)fq.dd[1] * s_b;
+            fw.t = (int64_t)fw.dd[0] * s_a + (int64_t)fw.dd[1] * s_b;
             ps_fast_end_q(&q, &bat, &fq);
+            ps_fast_end_q(&w, &bat, &fw);
             const int64_t t = (int64_t)dd_a * s_a + (int64_t)dd_b * s_b;
-            same_q = same_q && (int64_t)q.i_dc == fp_shr_floor_i64(t + 1, 1u);
+            same_q = same_q && (int64_t)q.i_dc == fp_shr_floor_i64(t + 1, 1u) &&
+                     w.i_dc == q.i_dc && w.v_dc == q.v_dc;
         }
         for (size_t i = 0; i < sizeof v_f / sizeof v_f[0]; i++) {
             power_stage_f32 f;
@@ -1069,6 +1082,18 @@ static void test_held_legs(void) {
             UT_CHECK(power_stage_init_f32(&f, &power_stage_params_default, STEP_NS, 600.0) ==
                      PS_OK);
             f.v_dc = v_f[i];
+            ps_legs_f32 hf;
+            ps_fast_held_legs_f32(st, &hf);
+            same_f = same_f && same_f32(hf.w[0], lf.w[0]) && same_f32(hf.w[1], lf.w[1]) &&
+                     same_f32(hf.dd[0], lf.dd[0]) && same_f32(hf.dd[1], lf.dd[1]);
+            /* The DC link on the sum t with the halved coefficient: k_c (t / 2)'s bits. */
+            ps_battery_f32 bf;
+            uint32_t sat = 0u;
+            power_stage_battery_f32(&f, 2.0, 1200.0, &bf);
+            const float t = v_f[i] * 0.37f;
+            const float dv_old = bf.kg * (bf.e_v - 600.0f) + (2.0f * f.k.neg_k_c) * (0.5f * t);
+            same_f = same_f && same_f32(ps_dclink_step_f32(600.0f, &bf, f.k.neg_k_c, t, &sat),
+                                        600.0f + dv_old);
             ps_fast_begin_f32(&f, &lf, &ff);
             const float v3 = v_f[i] * (1.0f / 3.0f);
             same_f = same_f && same_f32(f.u[0], v3 * (float)n_a) &&

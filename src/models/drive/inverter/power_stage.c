@@ -232,7 +232,7 @@ ps_status power_stage_init_f32(power_stage_f32 *ps, const power_stage_params *p,
     ps->k.a_d = (float)(2.0 * c.r_cd * c.g_d);
     ps->k.neg_a_d = -ps->k.a_d;
     ps->k.k_node = (float)c.k_node;
-    ps->k.neg_k_c = (float)(-c.k_c);
+    ps->k.neg_k_c = (float)(-0.5 * c.k_c); /* of the sum 2 i_dc (ps_dclink_step_f32) */
     for (x = 0u; x < 2u; x++) {
         ps->ph[x].i_l = 0.0f;
         ps->ph[x].v_c = 0.0f;

@@ -192,7 +192,8 @@ typedef struct {
     float g_d;                      /* [S] 1 / (R_d + T / (2 C_d)) */
     float a_d, neg_a_d;             /* [-] 2 r_cd G_d and its negative */
     float k_node;                   /* [ohm] 1 / (G_L + 2C/T + G_d) */
-    float neg_k_c;                  /* [ohm] -T / C_dc (volts per ampere and step) */
+    float neg_k_c;                  /* [ohm] -T / (2 C_dc): of the DC-link current's sum 2 i_dc
+                                       (ps_dclink_step_f32; volts per ampere and step) */
 } ps_coef_f32;
 
 typedef struct {

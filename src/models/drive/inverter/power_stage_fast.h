@@ -30,23 +30,37 @@
 #ifndef UUV_POWER_STAGE_FAST_H
 #define UUV_POWER_STAGE_FAST_H
 
+#include <stdbool.h>
 #include <stdint.h>
 
 #include "fixedpoint/fixedpoint.h"
 #include "models/drive/inverter/power_stage.h"
 #include "models/drive/inverter/power_stage_nodes.h"
 
-/* The legs' factors of a step (fixed twin), Q15 units: what its duties give the stage. */
+/*
+ * The legs' factors of a step (fixed twin): what its duties give the stage,
+ * in Q15 units, or, for held states (every duty 0 or 32768), in whole
+ * units (whole: the duties over 32768, the small integers n_x = 2 s_x -
+ * s_y - s_c and s_x - s_c). Both give the same bits: with w = 32768 n the
+ * inverter's rounded product hi((8 v3) (2^14 w) + 2^31) is exactly n v3
+ * (v3 = v_dc / 3 as rounded there), and with dd = 32768 m the DC-link
+ * current's floor((T + 2^15) / 2^16) is floor((T' + 1) / 2) of T' = T /
+ * 32768 (tests/unit/test_power_stage.c, test_held_legs). The whole form
+ * takes three operations off the step's chain through the DC link; a
+ * constant at each inlined use, so each use compiles to one form.
+ */
 typedef struct {
     int32_t w[2];  /* the leg sums 2 d_x - d_y - d_c, x = a, b, in [-65536, 65536] */
     int32_t dd[2]; /* d_a - d_c, d_b - d_c */
+    bool whole;    /* held states: w and dd in whole units */
 } ps_legs_q;
 
 /* What the pieces of one step carry between them (fixed twin). */
 typedef struct {
-    int32_t dd[2]; /* d_a - d_c, d_b - d_c, Q15 units */
+    int32_t dd[2]; /* d_a - d_c, d_b - d_c, the legs' units */
     int64_t t;     /* the DC-link current's sum T, formed phase by phase */
     uint32_t sat;  /* the stage's clamp count, kept in a local */
+    bool whole;    /* the legs' units whole (ps_legs_q) */
 } ps_fast_q;
 
 /* The legs' factors of the duties duty[x] (Q15, 0..32768). */
@@ -55,15 +69,32 @@ static inline void ps_fast_legs_q(const int32_t duty[3], ps_legs_q *l) {
     l->w[1] = ps_leg_sum_q(duty[1], duty[0], duty[2]);
     l->dd[0] = duty[0] - duty[2];
     l->dd[1] = duty[1] - duty[2];
+    l->whole = false;
+}
+
+/* The legs' factors of the held states s[x] (0 or 1), in whole units. */
+static inline void ps_fast_held_legs_q(const int32_t s[3], ps_legs_q *l) {
+    l->w[0] = ps_leg_sum_q(s[0], s[1], s[2]);
+    l->w[1] = ps_leg_sum_q(s[1], s[0], s[2]);
+    l->dd[0] = s[0] - s[2];
+    l->dd[1] = s[1] - s[2];
+    l->whole = true;
 }
 
 /* Start of a step with the legs' factors l: inverter voltages. */
 static inline void ps_fast_begin_q(power_stage_q *ps, const ps_legs_q *l, ps_fast_q *f) {
-    ps_inverter_w_q(ps->v_dc, l->w[0], l->w[1], &ps->u[0], &ps->u[1]);
+    if (l->whole) {
+        const int32_t v3 = ps_hi_q(ps_mac_q(ps_acc_q(0), ps->v_dc, 0x55555555));
+        ps->u[0] = l->w[0] * v3;
+        ps->u[1] = l->w[1] * v3;
+    } else {
+        ps_inverter_w_q(ps->v_dc, l->w[0], l->w[1], &ps->u[0], &ps->u[1]);
+    }
     f->dd[0] = l->dd[0];
     f->dd[1] = l->dd[1];
     f->t = 0;
     f->sat = ps->sat_count;
+    f->whole = l->whole;
 }
 
 /*
@@ -85,8 +116,10 @@ static inline void ps_fast_phase_q(power_stage_q *ps, ps_fast_q *f, int x, int32
 /* End of the step: the DC-link current and the DC link with the battery bat. */
 static inline void ps_fast_end_q(power_stage_q *ps, const ps_battery_q *bat, const ps_fast_q *f) {
     uint32_t sat = f->sat;
-    /* DC-link current: floor((T + 2^15) / 2^16), |T| <= 2^46 (see above). */
-    const int32_t i_dc = (int32_t)fp_shr_floor_i64(f->t + 32768, 16u);
+    /* DC-link current: floor((T + 2^15) / 2^16), |T| <= 2^46 (see above), or
+     * in whole units floor((T + 1) / 2), |T| <= 2^30. */
+    const int32_t i_dc = f->whole ? (int32_t)fp_shr_floor_i64(f->t + 1, 1u)
+                                  : (int32_t)fp_shr_floor_i64(f->t + 32768, 16u);
     ps->v_dc = ps_dclink_step_q(ps->v_dc, bat, ps->k.neg_k_c, i_dc, &sat);
     ps->i_dc = i_dc;
     ps->sat_count = sat;
@@ -138,6 +171,12 @@ static inline void ps_fast_legs_f32(const int32_t duty[3], ps_legs_f32 *l) {
     l->dd[1] = dq[1] - dq[2];
 }
 
+/* The legs' factors of the held states s[x] (0 or 1): those of their duties. */
+static inline void ps_fast_held_legs_f32(const int32_t s[3], ps_legs_f32 *l) {
+    const int32_t duty[3] = {s[0] * 32768, s[1] * 32768, s[2] * 32768};
+    ps_fast_legs_f32(duty, l);
+}
+
 static inline void ps_fast_begin_f32(power_stage_f32 *ps, const ps_legs_f32 *l, ps_fast_f32 *f) {
     ps_inverter_w_f32(ps->v_dc, l->w[0], l->w[1], &ps->u[0], &ps->u[1]);
     f->dd[0] = l->dd[0];
@@ -164,7 +203,7 @@ static inline void ps_fast_end_f32(power_stage_f32 *ps, const ps_battery_f32 *ba
                                    const ps_fast_f32 *f) {
     uint32_t sat = f->sat;
     const float i_dc = 0.5f * f->t;
-    ps->v_dc = ps_dclink_step_f32(ps->v_dc, bat, ps->k.neg_k_c, i_dc, &sat);
+    ps->v_dc = ps_dclink_step_f32(ps->v_dc, bat, ps->k.neg_k_c, f->t, &sat);
     ps->i_dc = i_dc;
     ps->sat_count = sat;
 }

@@ -62,8 +62,9 @@ void power_stage_step_f32(power_stage_f32 *ps, const power_stage_in_f32 *in) {
     dv = ps_filter_node_f32(k, &ps->ph[1], &h, in->i_motor_a[1]);
     ps_filter_update_f32(k, &ps->ph[1], &h, dv, in->i_motor_a[1], &ps->sat_count);
 
-    i_dc = ps_dc_current_f32(in->duty, i0_a + ps->ph[0].i_l, i0_b + ps->ph[1].i_l);
-    ps->v_dc = ps_dclink_step_f32(ps->v_dc, &in->battery, k->neg_k_c, i_dc, &ps->sat_count);
+    const float t = ps_dc_sum_f32(in->duty, i0_a + ps->ph[0].i_l, i0_b + ps->ph[1].i_l);
+    i_dc = 0.5f * t;
+    ps->v_dc = ps_dclink_step_f32(ps->v_dc, &in->battery, k->neg_k_c, t, &ps->sat_count);
     ps->u[0] = u_a;
     ps->u[1] = u_b;
     ps->i_dc = i_dc;
