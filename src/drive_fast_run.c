@@ -53,11 +53,11 @@ static void rt_stage_run(drive_segment *d, const rt_seg *seg, uint32_t ns) {
         DRIVE_NUM(ps_legs) l;
         if (seg[i].m == 0u) {
             DRIVE_NUM(ps_fast_legs)(seg[i].v, &l);
-            drive_rt_stage(&r, &l);
+            drive_rt_stage(&r, &l, false);
         } else {
             DRIVE_NUM(ps_fast_held_legs)(seg[i].v, &l);
             for (uint32_t j = seg[i].m; j != 0u; j--) {
-                drive_rt_stage(&r, &l);
+                drive_rt_stage(&r, &l, true);
             }
         }
     }

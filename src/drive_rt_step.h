@@ -72,24 +72,34 @@ typedef struct {
  * fixed desk's runs, passing r): r's pointers are then the drive's fields
  * or the run's locals.
  */
-static inline void drive_rt_phase(drive_rt_on *r, DRIVE_NUM(ps_fast) *f, int x)
+static inline void drive_rt_phase(drive_rt_on *r, DRIVE_NUM(ps_fast) *f,
+                                  const DRIVE_NUM(ps_legs) *l, int x, bool whole)
     __attribute__((always_inline));
-static inline void drive_rt_phase(drive_rt_on *r, DRIVE_NUM(ps_fast) *f, int x) {
-    DRIVE_NUM(ps_fast_phase)(r->ps, f, x, r->i_fast[x]);
+static inline void drive_rt_phase(drive_rt_on *r, DRIVE_NUM(ps_fast) *f,
+                                  const DRIVE_NUM(ps_legs) *l, int x, bool whole) {
+    if (whole) {
+        DRIVE_NUM(ps_fast_phase_held)(r->ps, f, l, x, r->i_fast[x]); /* held legs' form */
+    } else {
+        DRIVE_NUM(ps_fast_phase)(r->ps, f, x, r->i_fast[x]);
+    }
     const num_val v = r->ps->ph[x].v_c;
     r->i_fast[x] = num_companion_rt(r->i_fast[x], v, r->e[x], r->gain);
     r->v_cap[x] += v;
 }
 
-/* The stage's part of a step with the legs' factors l (power_stage_fast.h). */
-static inline void drive_rt_stage(drive_rt_on *r, const DRIVE_NUM(ps_legs) *l)
+/*
+ * The stage's part of a step with the legs' factors l (power_stage_fast.h);
+ * whole: l->whole, as a constant at each call, so that each call compiles
+ * to its one form.
+ */
+static inline void drive_rt_stage(drive_rt_on *r, const DRIVE_NUM(ps_legs) *l, bool whole)
     __attribute__((always_inline));
-static inline void drive_rt_stage(drive_rt_on *r, const DRIVE_NUM(ps_legs) *l) {
+static inline void drive_rt_stage(drive_rt_on *r, const DRIVE_NUM(ps_legs) *l, bool whole) {
     DRIVE_NUM(power_stage) *ps = r->ps;
     DRIVE_NUM(ps_fast) f;
     DRIVE_NUM(ps_fast_begin)(ps, l, &f);
-    drive_rt_phase(r, &f, 0);
-    drive_rt_phase(r, &f, 1);
+    drive_rt_phase(r, &f, l, 0, whole);
+    drive_rt_phase(r, &f, l, 1, whole);
     DRIVE_NUM(ps_fast_end)(ps, r->bat, &f);
     *r->v_dc += ps->v_dc;
 }
@@ -101,7 +111,7 @@ static inline void drive_rt_step_on(drive_rt_on *r) {
     DRIVE_NUM(ps_legs) l;
     pwm_rt_duties(r->rt, r->sampled, r->s, duty);
     DRIVE_NUM(ps_fast_legs)(duty, &l);
-    drive_rt_stage(r, &l);
+    drive_rt_stage(r, &l, false);
 }
 
 /* One step on the drive d. */

@@ -1066,6 +1066,24 @@ static void test_held_legs(void) {
             ps_fast_held_legs_q(st, &hq);
             w.v_dc = v_q[i];
             ps_fast_begin_q(&w, &hq, &fw);
+            /* Both filter phases on both forms, from states within +-1/2 per unit. */
+            power_stage_q pa = q;
+            power_stage_q pb = w;
+            ps_fast_q fa = fq;
+            ps_fast_q fb = fw;
+            const size_t nv = sizeof v_q / sizeof v_q[0];
+            for (int x = 0; x < 2; x++) {
+                const ps_phase_q st0 = {v_q[(i + 3u + (size_t)x) % nv] / 2,
+                                        -v_q[(i + 7u) % nv] / 2, v_q[(i + 1u) % nv] / 3,
+                                        v_q[(i + 9u + (size_t)x) % nv] / 2};
+                pa.ph[x] = st0;
+                pb.ph[x] = st0;
+                ps_fast_phase_q(&pa, &fa, x, v_q[(i + 4u) % nv] / 4);
+                ps_fast_phase_held_q(&pb, &fb, &hq, x, v_q[(i + 4u) % nv] / 4);
+                same_q = same_q && pa.ph[x].i_l == pb.ph[x].i_l && pa.ph[x].v_c == pb.ph[x].v_c &&
+                         pa.ph[x].i_d == pb.ph[x].i_d && pa.ph[x].j_sh == pb.ph[x].j_sh;
+            }
+            same_q = same_q && fa.t == 32768 * fb.t && fa.sat == fb.sat;
             same_q = same_q && w.u[0] == q.u[0] && w.u[1] == q.u[1] && hq.w[0] == n_a &&
                      hq.w[1] == n_b && hq.dd[0] == dd_a && hq.dd[1] == dd_b;
             fq.t = (int64_t)fq.dd[0] * s_a + (int64_t)fq.dd[1] * s_b;

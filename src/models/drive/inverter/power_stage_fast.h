@@ -45,9 +45,11 @@
  * inverter's rounded product hi((8 v3) (2^14 w) + 2^31) is exactly n v3
  * (v3 = v_dc / 3 as rounded there), and with dd = 32768 m the DC-link
  * current's floor((T + 2^15) / 2^16) is floor((T' + 1) / 2) of T' = T /
- * 32768 (tests/unit/test_power_stage.c, test_held_legs). The whole form
- * takes three operations off the step's chain through the DC link; a
- * constant at each inlined use, so each use compiles to one form.
+ * 32768 (tests/unit/test_power_stage.c, test_held_legs); the filter's
+ * history then takes u G_L2 as v3 (n G_L2) (ps_filter_history_held_q()).
+ * The whole form takes about seven operations off the step's chain
+ * through the DC link; a constant at each inlined use, so each use
+ * compiles to one form (the firmware's tick takes the Q15 one).
  */
 typedef struct {
     int32_t w[2];  /* the leg sums 2 d_x - d_y - d_c, x = a, b, in [-65536, 65536] */
@@ -98,6 +100,19 @@ static inline void ps_fast_begin_q(power_stage_q *ps, const ps_legs_q *l, ps_fas
 }
 
 /*
+ * The inductor branch's history (ps_filter_history_q()) with held states:
+ * its 64-bit sum takes (u - v) G_L2 as v3 (n G_L2) - v G_L2, the same
+ * integer (u = n v3 and u - v are exact), so that the step's chain
+ * through the DC link has one product there instead of two.
+ */
+static inline void ps_filter_history_held_q(const ps_coef_q *k, const ps_phase_q *x, int32_t v3,
+                                            int64_t ng, ps_hist_q *h) {
+    const uint64_t acc = ps_mac_q(ps_acc_q(x->i_l), x->i_l, k->neg_eps_l) -
+                         (uint64_t)((int64_t)x->v_c * (int64_t)k->g_l2);
+    h->j_l = ps_hi_q(acc + (uint64_t)(v3 * ng)); /* |v3 ng| < 2^61 */
+}
+
+/*
  * Filter phase x (0 or 1) with the motor current im (Q3.28 of 256 A: the
  * general step's Q15 input times 8192); adds dd_x S_x to T, so that after
  * both phases T = dd_a S_a + dd_b S_b as the sum above.
@@ -108,6 +123,27 @@ static inline void ps_fast_phase_q(power_stage_q *ps, ps_fast_q *f, int x, int32
     ps_hist_q h;
     const int32_t i0 = ph->i_l;
     ps_filter_history_q(k, ph, ps->u[x], &h);
+    const int32_t dv = ps_filter_node_q(k, ph, &h, im);
+    ps_filter_update_q(k, ph, &h, dv, im, &f->sat);
+    f->t += (int64_t)f->dd[x] * (i0 + ph->i_l);
+}
+
+/*
+ * The same phase after a begin with the held legs l (whole units), its
+ * history by ps_filter_history_held_q(): the same bits. v3 is the begin's
+ * (the DC link moves at the end), n G_L2 the same in every step of a
+ * held run, so that inlined in a run's loop both are formed once. A
+ * function of its own, so that the tick's phase (ps_fast_phase_q(), out
+ * of line where the compiler takes it so) carries no test of the form.
+ */
+static inline void ps_fast_phase_held_q(power_stage_q *ps, ps_fast_q *f, const ps_legs_q *l, int x,
+                                        int32_t im) {
+    const ps_coef_q *k = &ps->k;
+    ps_phase_q *ph = &ps->ph[x];
+    ps_hist_q h;
+    const int32_t i0 = ph->i_l;
+    const int32_t v3 = ps_hi_q(ps_mac_q(ps_acc_q(0), ps->v_dc, 0x55555555));
+    ps_filter_history_held_q(k, ph, v3, (int64_t)l->w[x] * k->g_l2, &h);
     const int32_t dv = ps_filter_node_q(k, ph, &h, im);
     ps_filter_update_q(k, ph, &h, dv, im, &f->sat);
     f->t += (int64_t)f->dd[x] * (i0 + ph->i_l);
@@ -149,6 +185,7 @@ static inline void ps_fast_step_q(power_stage_q *ps, const ps_battery_q *bat, co
 typedef struct {
     float w[2];  /* the leg sums (2 d_x - d_y) - d_c, x = a, b */
     float dd[2]; /* d_a - d_c, d_b - d_c */
+    bool whole;  /* of held states (the float step has one form for both) */
 } ps_legs_f32;
 
 typedef struct {
@@ -169,12 +206,14 @@ static inline void ps_fast_legs_f32(const int32_t duty[3], ps_legs_f32 *l) {
     l->w[1] = ps_leg_sum_f32(dq[1], dq[0], dq[2]);
     l->dd[0] = dq[0] - dq[2];
     l->dd[1] = dq[1] - dq[2];
+    l->whole = false;
 }
 
 /* The legs' factors of the held states s[x] (0 or 1): those of their duties. */
 static inline void ps_fast_held_legs_f32(const int32_t s[3], ps_legs_f32 *l) {
     const int32_t duty[3] = {s[0] * 32768, s[1] * 32768, s[2] * 32768};
     ps_fast_legs_f32(duty, l);
+    l->whole = true;
 }
 
 static inline void ps_fast_begin_f32(power_stage_f32 *ps, const ps_legs_f32 *l, ps_fast_f32 *f) {
@@ -197,6 +236,13 @@ static inline void ps_fast_phase_f32(power_stage_f32 *ps, ps_fast_f32 *f, int x,
      * (phase 0 assigns, so that no 0 + (-0) changes a zero's sign). */
     const float term = f->dd[x] * (i0 + ph->i_l);
     f->t = (x == 0) ? term : f->t + term;
+}
+
+/* The phase after held legs: the float step's one form. */
+static inline void ps_fast_phase_held_f32(power_stage_f32 *ps, ps_fast_f32 *f,
+                                          const ps_legs_f32 *l, int x, float im) {
+    (void)l;
+    ps_fast_phase_f32(ps, f, x, im);
 }
 
 static inline void ps_fast_end_f32(power_stage_f32 *ps, const ps_battery_f32 *bat,
