@@ -100,19 +100,6 @@ static inline void ps_fast_begin_q(power_stage_q *ps, const ps_legs_q *l, ps_fas
 }
 
 /*
- * The inductor branch's history (ps_filter_history_q()) with held states:
- * its 64-bit sum takes (u - v) G_L2 as v3 (n G_L2) - v G_L2, the same
- * integer (u = n v3 and u - v are exact), so that the step's chain
- * through the DC link has one product there instead of two.
- */
-static inline void ps_filter_history_held_q(const ps_coef_q *k, const ps_phase_q *x, int32_t v3,
-                                            int64_t ng, ps_hist_q *h) {
-    const uint64_t acc = ps_mac_q(ps_acc_q(x->i_l), x->i_l, k->neg_eps_l) -
-                         (uint64_t)((int64_t)x->v_c * (int64_t)k->g_l2);
-    h->j_l = ps_hi_q(acc + (uint64_t)(v3 * ng)); /* |v3 ng| < 2^61 */
-}
-
-/*
  * Filter phase x (0 or 1) with the motor current im (Q3.28 of 256 A: the
  * general step's Q15 input times 8192); adds dd_x S_x to T, so that after
  * both phases T = dd_a S_a + dd_b S_b as the sum above.
