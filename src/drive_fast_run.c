@@ -8,8 +8,7 @@
  *               (it does not depend on the stage there): the sub-step
  *               frame plan's held steps as runs (drive_rt_held(),
  *               pwm_rt_skip()), its event steps one by one with their
- *               duties; the sampled modulator's steps as runs of equal
- *               states;
+ *               duties;
  *   stage       the stage's steps over the segments (rt_stage_run()) on
  *               local copies of the fields the real-time step uses
  *               (drive_rt_step.h), a held run with its legs' factors
@@ -17,7 +16,9 @@
  *               event step with its duties.
  *
  * The stage's half calls nothing, so that its state stays in registers
- * from step to step. Any other path takes n drive_fast_step()s.
+ * from step to step. The sampled modulator, which is integer and calls
+ * nothing, runs with the stage in one loop (rt_sampled_run()), each
+ * step's states as held legs. Any other path takes n drive_fast_step()s.
  * tests/unit/test_executive.c checks that both give drive_fast_tick()'s
  * bits.
  */
@@ -69,35 +70,48 @@ static void rt_stage_run(drive_segment *d, const rt_seg *seg, uint32_t ns) {
     }
 }
 
-/* True when segment g is a held run on the states s. */
-static inline bool held_as(const rt_seg *g, const int32_t s[3]) {
-    return (g->m != 0u) && (g->v[0] == s[0]) && (g->v[1] == s[1]) && (g->v[2] == s[2]);
+/*
+ * n steps with the sampled modulator, which is integer and calls nothing:
+ * modulator and stage in one loop, each step's states as held legs.
+ */
+static void rt_sampled_run(drive_segment *d, uint32_t n) __attribute__((noinline));
+static void rt_sampled_run(drive_segment *d, uint32_t n) {
+    DRIVE_NUM(power_stage) ps = d->ps;
+    const DRIVE_NUM(ps_battery) bat = d->in.battery;
+    int32_t s[3] = {d->s[0], d->s[1], d->s[2]};
+    num_val i_fast[2] = {d->i_fast[0], d->i_fast[1]};
+    const num_val e[2] = {d->e[0], d->e[1]};
+    num_sum v_cap[2] = {d->sums.v_cap[0], d->sums.v_cap[1]};
+    num_sum v_dc = d->sums.v_dc;
+    drive_rt_on r = {&d->rt, s, true, &ps, &bat, i_fast, e, d->NUM_RT_GAIN, v_cap, &v_dc};
+    for (uint32_t k = 0u; k < n; k++) {
+        DRIVE_NUM(ps_legs) l;
+        pwm_rt_step(&d->rt, s);
+        DRIVE_NUM(ps_fast_held_legs)(s, &l);
+        drive_rt_stage(&r, &l, true);
+    }
+    d->ps = ps;
+    d->sums.v_dc = v_dc;
+    for (int x = 0; x < 3; x++) {
+        d->s[x] = s[x];
+    }
+    for (int x = 0; x < 2; x++) {
+        d->i_fast[x] = i_fast[x];
+        d->sums.v_cap[x] = v_cap[x];
+    }
 }
 
 /*
- * The modulator's part of up to n steps as at most RT_SEGS segments;
+ * The sub-step modulator's part of up to n steps as at most RT_SEGS segments;
  * returns the steps taken, at least 1.
  */
-static uint32_t rt_modulator_ahead(drive_segment *d, uint32_t n, bool sampled, rt_seg *seg,
-                                   uint32_t *ns) {
+static uint32_t rt_modulator_ahead(drive_segment *d, uint32_t n, rt_seg *seg, uint32_t *ns) {
     pwm_rt *p = &d->rt;
     int32_t *s = d->s;
     uint32_t taken = 0u;
     uint32_t k = 0u;
     while ((taken < n) && (k < RT_SEGS)) {
         int32_t duty[3];
-        if (sampled) {
-            /* The sampled steps' states, a run while they stay. */
-            pwm_rt_sampled(p, s, duty);
-            if ((k > 0u) && held_as(&seg[k - 1u], s)) {
-                seg[k - 1u].m++;
-            } else {
-                seg[k] = (rt_seg){1u, {s[0], s[1], s[2]}};
-                k++;
-            }
-            taken++;
-            continue;
-        }
         const uint32_t held = drive_rt_held(p);
         const uint32_t m = (held < n - taken) ? held : n - taken;
         if (m == 0u) {
@@ -122,13 +136,16 @@ void drive_fast_run(drive_segment *d, uint32_t n) {
         }
         return;
     }
-    const bool sampled = d->cfg.modulator == DRIVE_MODULATOR_SAMPLED;
-    uint32_t left = n;
-    while (left > 0u) {
-        rt_seg seg[RT_SEGS];
-        uint32_t ns = 0u;
-        const uint32_t taken = rt_modulator_ahead(d, left, sampled, seg, &ns);
-        rt_stage_run(d, seg, ns);
-        left -= taken;
+    if (d->cfg.modulator == DRIVE_MODULATOR_SAMPLED) {
+        rt_sampled_run(d, n);
+    } else {
+        uint32_t left = n;
+        while (left > 0u) {
+            rt_seg seg[RT_SEGS];
+            uint32_t ns = 0u;
+            const uint32_t taken = rt_modulator_ahead(d, left, seg, &ns);
+            rt_stage_run(d, seg, ns);
+            left -= taken;
+        }
     }
 }
