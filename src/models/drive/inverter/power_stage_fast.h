@@ -74,12 +74,9 @@ static inline void ps_fast_legs_q(const int32_t duty[3], ps_legs_q *l) {
     l->whole = false;
 }
 
-/* The legs' factors of the held states s[x] (0 or 1), in whole units. */
+/* The legs' factors of the held states s[x] (0 or 1), in whole units: the same sums of s. */
 static inline void ps_fast_held_legs_q(const int32_t s[3], ps_legs_q *l) {
-    l->w[0] = ps_leg_sum_q(s[0], s[1], s[2]);
-    l->w[1] = ps_leg_sum_q(s[1], s[0], s[2]);
-    l->dd[0] = s[0] - s[2];
-    l->dd[1] = s[1] - s[2];
+    ps_fast_legs_q(s, l);
     l->whole = true;
 }
 
