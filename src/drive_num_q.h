@@ -132,7 +132,7 @@ static inline num_val num_companion(const num_consts *k, num_val k32, num_val i,
     if (k32 != 0) {
         return ps_hi_q(ps_mac_q(ps_acc_q(i), dv, k32));
     }
-    return i + (int32_t)fp_shr_round_i64((int64_t)dv * k->k_mant, k->k_shift);
+    return i + (int32_t)fp_shr_round_var_i64((int64_t)dv * k->k_mant, k->k_shift);
 }
 
 /*
@@ -223,7 +223,7 @@ static inline int32_t num_pending(int32_t corr, uint32_t pending, uint32_t n) {
 /* The EMF of a frame, Q3.28 of 1024 V: vbar - (i_end - i_start) / (a_ss h N). */
 static inline int32_t num_emf(const num_consts *k, q31_t v_mean, q31_t i_end, q31_t i_start) {
     int64_t di = (int64_t)i_end - i_start;
-    int64_t drop = fp_shr_round_i64(di * k->e_mant, k->e_shift);
+    int64_t drop = fp_shr_round_var_i64(di * k->e_mant, k->e_shift);
     return (int32_t)fp_sat_q31(fp_shr_round_i64(v_mean, 3u) - drop);
 }
 
@@ -256,7 +256,7 @@ static inline int64_t num_emf_lead(uint32_t n) { return 3 * (int64_t)n / 2 - 1; 
  */
 static inline int32_t num_emf_ahead(const num_consts *k, int32_t e, int32_t de, int32_t corr,
                                     int64_t lead) {
-    int64_t steer = fp_shr_round_i64((int64_t)corr * 8 * k->e_mant, k->e_shift);
+    int64_t steer = fp_shr_round_var_i64((int64_t)corr * 8 * k->e_mant, k->e_shift);
     return (int32_t)fp_sat_q31((int64_t)e + (int64_t)de * lead - steer);
 }
 

@@ -132,19 +132,41 @@ static void test_shifts_i64(void) {
     unsigned s;
     unsigned bad_floor = 0u;
     unsigned bad_round = 0u;
+    unsigned bad_var = 0u;
+    unsigned ties = 0u;
 
-    UT_TEST("fp_shr_floor_i64 and fp_shr_round_i64 for every s 0..63 and negative x, "
-            "reference: corrected integer division");
+    UT_TEST("fp_shr_floor_i64, fp_shr_round_i64 and fp_shr_round_var_i64 for every s 0..63 and "
+            "negative x, the ties and their neighbours, reference: corrected integer division");
     lcg_state = 2u;
     for (i = 0u; i < 300u; i++) {
         int64_t x = operand_i64(i);
         for (s = 0u; s <= 63u; s++) {
             bad_floor += (fp_shr_floor_i64(x, s) != ref_floor_pow2(x, s)) ? 1u : 0u;
             bad_round += (fp_shr_round_i64(x, s) != ref_round_pow2(x, s)) ? 1u : 0u;
+            bad_var += (fp_shr_round_var_i64(x, s) != ref_round_pow2(x, s)) ? 1u : 0u;
+        }
+    }
+    /* x = q 2^s + 2^(s-1) + d for d = -1, 0, 1: the ties and the values beside them. */
+    for (s = 1u; s <= 62u; s++) {
+        for (i = 0u; i < 20u; i++) {
+            const int64_t q = fp_shr_floor_i64(operand_i64(i + 40u), s + 1u);
+            for (int d = -1; d <= 1; d++) {
+                const int64_t x = q * ((int64_t)1 << s) + ((int64_t)1 << (s - 1u)) + d;
+                bad_var += (fp_shr_round_var_i64(x, s) != ref_round_pow2(x, s)) ? 1u : 0u;
+                bad_round += (fp_shr_round_i64(x, s) != ref_round_pow2(x, s)) ? 1u : 0u;
+                ties += (d == 0) ? 1u : 0u;
+            }
         }
     }
     UT_EQ_INT(bad_floor, 0);
     UT_EQ_INT(bad_round, 0);
+    UT_EQ_INT(bad_var, 0);
+    UT_EQ_INT(ties, 62 * 20);
+    UT_CHECK(fp_shr_round_var_i64(INT64_MAX, 1u) == (int64_t)1 << 62);
+    UT_EQ_INT(fp_shr_round_var_i64(INT64_MIN, 63u), -1);
+    UT_EQ_INT(fp_shr_round_var_i64(INT64_MIN, 1u), INT64_MIN / 2);
+    UT_EQ_INT(fp_shr_round_var_i64(-3, 1u), -1);
+    UT_EQ_INT(fp_shr_round_var_i64(-5, 0u), -5);
     UT_EQ_INT(fp_shr_round_i64(-3, 1u), -1);
     UT_CHECK(fp_shr_round_i64(INT64_MAX, 1u) == (int64_t)1 << 62);
     UT_CHECK(fp_shr_floor_i64(INT64_MIN, 0u) == INT64_MIN);

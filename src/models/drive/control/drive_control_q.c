@@ -43,7 +43,7 @@ static bool dc_gain_make(drive_control_gain_q *g, double value) {
  * int64, so only the narrowing can clamp.
  */
 static q31_t dc_apply(const drive_control_gain_q *g, q31_t x, uint32_t *sat) {
-    return fp_sat_cnt_q31(fp_shr_round_i64((int64_t)x * (int64_t)g->mant, g->shift), sat);
+    return fp_sat_cnt_q31(fp_shr_round_var_i64((int64_t)x * (int64_t)g->mant, g->shift), sat);
 }
 
 /* Clamps an int64 to [lo, hi] (a control limit, not counted as saturation). */

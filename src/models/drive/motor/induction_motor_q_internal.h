@@ -18,13 +18,13 @@
  */
 static inline int64_t im_dot_q(const induction_motor_row_q *r, int32_t x0, int32_t x1, int32_t x2) {
     const int64_t s = (int64_t)r->c[0] * x0 + (int64_t)r->c[1] * x1 + (int64_t)r->c[2] * x2;
-    return fp_shr_round_i64(s, r->shift);
+    return fp_shr_round_var_i64(s, r->shift);
 }
 
 /* The two-term form of im_dot_q() (c2 unused); the same bounds. */
 static inline int64_t im_dot2_q(const induction_motor_row_q *r, int32_t x0, int32_t x1) {
     const int64_t s = (int64_t)r->c[0] * x0 + (int64_t)r->c[1] * x1;
-    return fp_shr_round_i64(s, r->shift);
+    return fp_shr_round_var_i64(s, r->shift);
 }
 
 /*
@@ -32,7 +32,7 @@ static inline int64_t im_dot2_q(const induction_motor_row_q *r, int32_t x0, int3
  * |c0| |x| < 2^63 (a Q31 operand, or k_dw: mantissa below 2^29, |x| <= 2^33).
  */
 static inline int64_t im_mul1_q(const induction_motor_row_q *r, int64_t x) {
-    return fp_shr_round_i64((int64_t)r->c[0] * x, r->shift);
+    return fp_shr_round_var_i64((int64_t)r->c[0] * x, r->shift);
 }
 
 /*
