@@ -393,7 +393,7 @@ $(BUILD)/tools/csvdiff: tools/csvdiff.c
 	$(CC) $(TOOL_CFLAGS) -D_POSIX_C_SOURCE=200809L -o $@ $^ -lm
 
 HOST_TOOLS := $(BUILD)/tools/check_tables $(BUILD)/tools/gen_wavetables \
-              $(BUILD)/tools/test_math_libm $(BUILD)/tools/csvdiff
+              $(BUILD)/tools/test_math_libm $(BUILD)/tools/csvdiff $(BUILD)/tools/test_csv_number
 
 # The host benches and the controller's closed-loop check (tests/host/*.c
 # with a main of their own: libc, libm and the POSIX clock), linked with the
@@ -405,6 +405,13 @@ HOST_BENCHES := $(patsubst tests/host/%.c,$(BUILD)/tools/%, \
 $(HOST_BENCHES): $(BUILD)/tools/%: tests/host/%.c $(linux-fixed_SRC_O)
 	@mkdir -p $(@D)
 	$(CC) $(TOOL_CFLAGS) -fno-builtin -D_POSIX_C_SOURCE=200809L -o $@ $< $(linux-fixed_SRC_O) -lm
+
+# The desk's number text against its printf definition (tests/host/test_csv_number.c).
+$(BUILD)/tools/test_csv_number: tests/host/test_csv_number.c $(linux-fixed_SRC_O) \
+        $(BUILD)/linux-fixed/obj/ports/linux/csv_out.o
+	@mkdir -p $(@D)
+	$(CC) $(TOOL_CFLAGS) -D_POSIX_C_SOURCE=200809L -Iports/linux -o $@ $< \
+	    $(linux-fixed_SRC_O) $(BUILD)/linux-fixed/obj/ports/linux/csv_out.o -lm
 
 # ---- Top-level targets ----------------------------------------------------
 

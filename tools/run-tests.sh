@@ -150,6 +150,7 @@ run "host make run's dependencies, kept files" pass sh tests/host/test_make.sh
 run "host uuvsim view and --view in Chromium" pass sh tests/host/test_view.sh \
     "$BUILD/linux-float/uuvsim"
 run "host math vs libm" pass "$BUILD/tools/test_math_libm"
+run "host CSV number text vs printf" pass "$BUILD/tools/test_csv_number"
 run "host drive controller closed loop" pass "$BUILD/tools/sim_drive_control"
 run "host check_tables (exhaustive)" pass "$BUILD/tools/check_tables"
 run "host wavetable_data.c = generator" pass "$BUILD/tools/gen_wavetables" --check \

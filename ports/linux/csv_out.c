@@ -31,21 +31,114 @@ void csv_header(FILE *f, bool full_plant) {
 }
 
 /*
+ * Writes the P-digit decimal d[0..p) times 10^x as printf's "%.Pg" does:
+ * positional when -4 <= x < p, else d.ddd e+XX; trailing zeros and a
+ * trailing point dropped. neg adds the sign. Returns the length.
+ */
+static size_t g_text(char *out, bool neg, const char *d, int p, int x) {
+    size_t n = 0u;
+    int last = p - 1; /* the last digit kept: trailing zeros go */
+    while (last > 0 && d[last] == '0') {
+        last--;
+    }
+    if (neg) {
+        out[n++] = '-';
+    }
+    if (x < -4 || x >= p) {
+        out[n++] = d[0];
+        if (last > 0) {
+            out[n++] = '.';
+            for (int i = 1; i <= last; i++) {
+                out[n++] = d[i];
+            }
+        }
+        n += (size_t)sprintf(out + n, "e%c%02d", (x < 0) ? '-' : '+', (x < 0) ? -x : x);
+        return n;
+    }
+    if (x < 0) {
+        out[n++] = '0';
+        out[n++] = '.';
+        for (int i = 0; i < -x - 1; i++) {
+            out[n++] = '0';
+        }
+        for (int i = 0; i <= last; i++) {
+            out[n++] = d[i];
+        }
+    } else {
+        for (int i = 0; i <= x; i++) {
+            out[n++] = d[i];
+        }
+        if (last > x) {
+            out[n++] = '.';
+            for (int i = x + 1; i <= last; i++) {
+                out[n++] = d[i];
+            }
+        }
+    }
+    out[n] = '\0';
+    return n;
+}
+
+/*
  * A value with the fewest significant digits that read back as the same
  * double (15, 16 or 17: %g drops trailing zeros, so 0.1 is "0.1"), and 0
- * for magnitudes below CSV_FLUSH and for -0.
+ * for magnitudes below CSV_FLUSH and for -0. The text is printf's
+ * "%.15g", "%.16g" or "%.17g", whichever comes first reads back; the
+ * digits are printed once, to 17 places, and the 15- and 16-digit ones
+ * rounded from them: exact unless the digits dropped are a half
+ * ("5", "50"), where the exact value may lie on either side, so there
+ * printf rounds the value itself. tests/host/test_csv_number.c compares
+ * the result with the three printf calls on a million values.
  */
 void csv_format_number(char *buf, size_t cap, double v) {
     if (!(fabs(v) >= CSV_FLUSH)) {
         snprintf(buf, cap, "%s", (v != v) ? "nan" : "0");
         return;
     }
-    for (int digits = 15; digits <= 17; digits++) {
-        snprintf(buf, cap, "%.*g", digits, v);
+    char e17[40];
+    if (!isfinite(v) || cap < 32u || snprintf(e17, sizeof e17, "%.16e", fabs(v)) != 22) {
+        for (int digits = 15; digits <= 17; digits++) {
+            snprintf(buf, cap, "%.*g", digits, v);
+            if (strtod(buf, NULL) == v) {
+                break;
+            }
+        }
+        return;
+    }
+    /* e17 is "d.dddddddddddddddde+XX" (22 characters; a 3-digit exponent took printf above). */
+    char d17[17];
+    d17[0] = e17[0];
+    memcpy(d17 + 1, e17 + 2, 16u);
+    const int x17 = atoi(e17 + 19);
+    const bool neg = v < 0.0;
+    for (int p = 15; p <= 16; p++) {
+        const char *tail = d17 + p;
+        const bool half = (p == 16) ? (tail[0] == '5') : (tail[0] == '5' && tail[1] == '0');
+        if (half) {
+            snprintf(buf, cap, "%.*g", p, v);
+        } else {
+            char d[17];
+            int x = x17;
+            memcpy(d, d17, (size_t)p);
+            if (tail[0] >= '5') { /* above the half: round up, carrying */
+                int i = p - 1;
+                while (i >= 0 && d[i] == '9') {
+                    d[i--] = '0';
+                }
+                if (i >= 0) {
+                    d[i]++;
+                } else {
+                    d[0] = '1';
+                    x++;
+                }
+            }
+            (void)g_text(buf, neg, d, p, x);
+        }
         if (strtod(buf, NULL) == v) {
-            break;
+            return;
         }
     }
+    (void)g_text(buf, neg, d17, 17, x17);
 }
 
 void csv_number(FILE *f, double v) {
