@@ -53,6 +53,21 @@
 #endif
 
 /*
+ * Whether the fixed-point helpers (src/fixedpoint/fixedpoint.h) may use the
+ * compiler's right shift of a negative integer and its conversion of an
+ * out-of-range integer to a narrower signed type. C99 leaves both to the
+ * implementation; GCC and Clang define them, on every target, as the
+ * arithmetic shift (floor) and reduction modulo 2^N. The port sets 1 with
+ * those compilers; the default, 0, keeps the portable forms (offset-binary
+ * shifts, saturation by two comparisons), which make lint and make prove
+ * analyse. The values are the same either way (test_fixedpoint holds each
+ * form to one reference, on the host and on the LM3S6965 image, which
+ * builds the portable forms); only the instruction count differs.
+ */
+#ifndef UUV_NATIVE_INT_OPS
+#define UUV_NATIVE_INT_OPS 0
+#endif
+/*
  * A lean image (UUV_LEAN_IMAGE 1; 0 by default) leaves out what the
  * firmware never runs and a 64 KiB flash cannot also hold: the drive's
  * event and averaged inverter layers, its energy audit and its

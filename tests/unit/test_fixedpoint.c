@@ -226,6 +226,20 @@ static void test_saturation(void) {
     UT_EQ_INT(fp_sat_cnt_q31(INT64_MIN, &sat), INT32_MIN);
     UT_EQ_INT(sat, 6);
     UT_EQ_INT(fp_sat_q31(INT64_MAX), INT32_MAX);
+    /* Values whose low 32 bits are in range (the native form's test). */
+    UT_EQ_INT(fp_sat_cnt_q31((int64_t)1 << 32, &sat), INT32_MAX);
+    UT_EQ_INT(fp_sat_cnt_q31(((int64_t)1 << 32) + 5, &sat), INT32_MAX);
+    UT_EQ_INT(fp_sat_cnt_q31(-((int64_t)1 << 32) - 5, &sat), INT32_MIN);
+    UT_EQ_INT(fp_sat_cnt_q31(((int64_t)3 << 31) - 1, &sat), INT32_MAX);
+    UT_EQ_INT(fp_sat_cnt_q31(-((int64_t)3 << 31), &sat), INT32_MIN);
+    UT_EQ_INT(sat, 11);
+    unsigned bad = 0u;
+    for (int64_t k = -64; k <= 64; k++) {
+        const int64_t x = k * ((int64_t)1 << 28) + (k % 7);
+        const int64_t want = (x > INT32_MAX) ? INT32_MAX : (x < INT32_MIN) ? INT32_MIN : x;
+        bad += (fp_sat_q31(x) != want) ? 1u : 0u;
+    }
+    UT_EQ_INT(bad, 0);
 }
 
 /* ---- Q15 arithmetic ---------------------------------------------------- */
