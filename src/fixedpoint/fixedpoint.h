@@ -112,6 +112,39 @@ static inline int32_t fp_shr_floor_i32(int32_t x, unsigned s) {
 #endif
 }
 
+#if UUV_NATIVE_INT_OPS
+/*
+ * The rounding shift in the compiler's own arithmetic shift, for 1 <= s,
+ * one definition for both widths (a 32-bit value stays in 32 bits, which
+ * a 32-bit core needs): floor(x / 2^(s-1)) + 1, halved; for s >= 2 the
+ * floor is at most a quarter of the type's range, so nothing carries, and
+ * s = 1 adds bit 0 instead.
+ */
+#define FP_SHR_ROUND_NATIVE_(x, s) \
+    (((s) == 1u) ? (((x) >> 1) + ((x) & 1)) : ((((x) >> ((s) - 1u)) + 1) >> 1))
+#endif
+
+/*
+ * round(x / 2^s) for 0 <= s <= 31, ties towards plus infinity, for every x.
+ * The half added before flooring is taken from bit s-1 of the offset image,
+ * so nothing can carry out of 32 bits. For s >= 1 the result lies in
+ * [-2^30, 2^30]; it cannot overflow.
+ */
+static inline int32_t fp_shr_round_i32(int32_t x, unsigned s) {
+#if UUV_NATIVE_INT_OPS
+    if (s == 0u) {
+        return x;
+    }
+    return FP_SHR_ROUND_NATIVE_(x, s);
+#else
+    uint32_t biased = (uint32_t)x ^ 0x80000000u;
+    if (s == 0u) {
+        return x;
+    }
+    return fp_from_u32_i32((biased >> s) + ((biased >> (s - 1u)) & 1u) - (0x80000000u >> s));
+#endif
+}
+
 /* floor(x / 2^s) for 0 <= s <= 63, for every x; as fp_shr_floor_i32(). */
 static inline int64_t fp_shr_floor_i64(int64_t x, unsigned s) {
 #if UUV_NATIVE_INT_OPS
@@ -128,11 +161,7 @@ static inline int64_t fp_shr_round_i64(int64_t x, unsigned s) {
     if (s == 0u) {
         return x;
     }
-    /* floor(x / 2^(s-1)) + 1, halved: below 2^62 for s >= 2, no carry. */
-    if (s == 1u) {
-        return (x >> 1) + (x & 1);
-    }
-    return ((x >> (s - 1u)) + 1) >> 1;
+    return FP_SHR_ROUND_NATIVE_(x, s);
 #else
     uint64_t biased = (uint64_t)x ^ 0x8000000000000000u;
     if (s == 0u) {
@@ -143,32 +172,6 @@ static inline int64_t fp_shr_round_i64(int64_t x, unsigned s) {
 #endif
 }
 
-/*
- * round(x / 2^s) for 0 <= s <= 31, ties towards plus infinity, for every x.
- * The half added before flooring is taken from bit s-1 of the offset image,
- * so nothing can carry out of 32 bits. For s >= 1 the result lies in
- * [-2^30, 2^30]; it cannot overflow.
- */
-static inline int32_t fp_shr_round_i32(int32_t x, unsigned s) {
-#if UUV_NATIVE_INT_OPS
-    /* The 64-bit form's (above) in 32 bits, a copy test_fixedpoint holds to
-     * the same reference: through the 64-bit form, the M4's and the M3's
-     * motor tasks take 47-50 instructions more per frame. */
-    if (s == 0u) {
-        return x;
-    }
-    if (s == 1u) {
-        return (x >> 1) + (x & 1);
-    }
-    return ((x >> (s - 1u)) + 1) >> 1;
-#else
-    uint32_t biased = (uint32_t)x ^ 0x80000000u;
-    if (s == 0u) {
-        return x;
-    }
-    return fp_from_u32_i32((biased >> s) + ((biased >> (s - 1u)) & 1u) - (0x80000000u >> s));
-#endif
-}
 
 /*
  * fp_shr_round_i64() for a shift that is not a compile-time constant (a
@@ -188,7 +191,9 @@ static inline int64_t fp_shr_round_var_i64(int64_t x, unsigned s) {
         return x; /* a return of its own: the form with one exit compiles 1-2 % longer */
     }
 #if UUV_NATIVE_INT_OPS
-    /* y = floor(x / 2^(s-1)), then floor(y / 2) + (y & 1), as below. */
+    /* y = floor(x / 2^(s-1)), then floor(y / 2) + (y & 1), as below: for
+     * a shift that is not a constant, FP_SHR_ROUND_NATIVE_'s test of s
+     * adds 29-115 instructions to the longest motor task of the M4 and M3. */
     const int64_t y = x >> (s - 1u);
     return (y >> 1) + (y & 1);
 #else
