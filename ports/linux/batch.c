@@ -349,6 +349,9 @@ int batch_main(int argc, char **argv) {
     for (size_t i = 0; ok && i < n_runs; i++) {
         runs[i]->u = uuvsim_run_open(&runs[i]->o, &runs[i]->status);
         ok = runs[i]->u != NULL;
+        if (ok) {
+            batch_lanes_attach(uuvsim_run_exec(runs[i]->u));
+        }
     }
     if (!ok) {
         for (size_t i = 0; i < n_runs; i++) {

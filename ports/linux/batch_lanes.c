@@ -41,6 +41,12 @@
 
 bool batch_lane_ready(const drive_segment *d) { return d->rt_path && d->fast_now == NULL; }
 
+void batch_lanes_attach(exec *e) {
+    if (e->desk_run == NULL && e->drive.cfg.inverter == DRIVE_INVERTER_SWITCHING) {
+        pwm_rt_frames(&e->drive.rt, 0u);
+    }
+}
+
 #define BATCH_PASS_MAX 4096 /* executives per pass */
 
 /*
@@ -212,8 +218,12 @@ static void lanes_load(lanes *L, unsigned l, const drive_segment *d) {
 }
 
 /* Back into the drive after n steps: what rt_run() stores (the coefficients are unchanged). */
-static void lanes_store(lanes *L, unsigned l, drive_segment *d, uint32_t n) {
-    pwm_rt_skip(&d->rt, n);
+static void lanes_store(lanes *L, unsigned l, drive_segment *d, uint32_t n, bool substep) {
+    if (substep) {
+        pwm_rt_skip_substep(&d->rt, n);
+    } else {
+        pwm_rt_skip(&d->rt, n);
+    }
     for (int x = 0; x < 2; x++) {
         d->ps.ph[x].i_l = LANE(L->i_l[x], l);
         d->ps.ph[x].v_c = LANE(L->v_c[x], l);
@@ -474,7 +484,7 @@ void batch_fast_run(drive_segment *const *d, size_t count, uint32_t n, bool subs
         }
         lanes_run(L, n, substep);
         for (size_t l = 0u; l < m; l++) {
-            lanes_store(&L[l / BATCH_W], (unsigned)(l % BATCH_W), d[i0 + l], n);
+            lanes_store(&L[l / BATCH_W], (unsigned)(l % BATCH_W), d[i0 + l], n, substep);
         }
     }
 }

@@ -42,6 +42,17 @@ extern const char batch_lanes_isa[];
 bool batch_lane_ready(const drive_segment *d);
 
 /*
+ * For a run e just initialised (no step taken) that will step through
+ * batch_step_all(): its modulator without frame plans (pwm_rt_frames(.., 0),
+ * every step computed on its own, the plans' bits, pwm_rt.h). The lanes
+ * form every step's duties themselves, so the motor task's plans would
+ * only cost (plan_build(): 18 % of a batch's instructions); a run that
+ * leaves the lanes (a fault, a trip) steps on as drive_fast_run() does
+ * without plans. Exact leaps (leap_attach()) do the same already.
+ */
+void batch_lanes_attach(exec *e);
+
+/*
  * n fast steps of each of the count drives d[i], each batch_lane_ready()
  * and with modulator substep (true) or sampled: drive_fast_run(d[i], n)'s
  * bits for every i.

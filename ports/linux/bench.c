@@ -294,6 +294,7 @@ static int batch_mission(const exec_config *base) {
             return -1;
         }
         most[i] = UINT32_MAX;
+        batch_lanes_attach(x[i]);
     }
     const double t0 = now_s();
     for (bool running = true; running;) {

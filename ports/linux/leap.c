@@ -531,10 +531,7 @@ static bool leap_take(leap_tables *L, drive_segment *d, unsigned s, uint32_t k, 
         ps->u[1] = (float)(v3 * (2.0 * sb - sa - sc));
         ps->i_dc = (float)y[R_IDC_LAST];
     }
-    pwm_rt_skip(&d->rt, k);
-    if (d->rt.n == 0u) {
-        d->rt.next_at = d->rt.k; /* unplanned (plans_off()): the next step on its own */
-    }
+    pwm_rt_skip_substep(&d->rt, k); /* unplanned (plans_off()) */
     for (unsigned x = 0u; x < 3u; x++) {
         d->s[x] = (int32_t)((s >> x) & 1u);
     }

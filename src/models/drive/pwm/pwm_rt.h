@@ -419,6 +419,19 @@ static inline int32_t pwm_rt_slope(const pwm_rt *p, int x) { return p->fr[pwm_rt
  */
 void pwm_rt_skip(pwm_rt *p, uint32_t n);
 
+/*
+ * The same for n sub-step modulator steps: in an unplanned frame (n = 0
+ * frames, pwm_rt_frames()) the next step is then computed on its own, as
+ * pwm_rt_substep()'s steps one by one leave it (their per-step event).
+ * Desk only (exact leaps, the batch's lanes).
+ */
+static inline void pwm_rt_skip_substep(pwm_rt *p, uint32_t n) {
+    pwm_rt_skip(p, n);
+    if (p->n == 0u) {
+        p->next_at = p->k;
+    }
+}
+
 /* Bit x of b as a leg state, 0 or 1. */
 static inline int32_t pwm_rt_bit(uint32_t b, uint32_t x) {
     int32_t v = 0;
