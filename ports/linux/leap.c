@@ -531,7 +531,7 @@ static bool leap_take(leap_tables *L, drive_segment *d, unsigned s, uint32_t k, 
         ps->u[1] = (float)(v3 * (2.0 * sb - sa - sc));
         ps->i_dc = (float)y[R_IDC_LAST];
     }
-    pwm_rt_skip_substep(&d->rt, k); /* unplanned (plans_off()) */
+    pwm_rt_skip_substep(&d->rt, k); /* unplanned (leap_attach()) */
     for (unsigned x = 0u; x < 3u; x++) {
         d->s[x] = (int32_t)((s >> x) & 1u);
     }
@@ -607,20 +607,6 @@ static void leap_run(void *ctx, drive_segment *d, uint32_t n) {
     }
 }
 
-/*
- * The leaps find the edges themselves (scan_signs()): the motor task's frame
- * plans would only serve the few ordinary steps, at more than those steps
- * cost, and the steps computed one by one give the plans' duties and states
- * bit for bit (pwm_rt.h). Both frames handed over to single steps: the one in
- * force, and the one the first latch starts (prepared in drive_init()).
- */
-static void plans_off(pwm_rt *p) {
-    pwm_rt_frames(p, 0u);
-    const pwm_rt_frame *now = &p->fr[p->cur];
-    const pwm_rt_ramp ramp = {{now->r0[0], now->r0[1]}, {now->dr[0], now->dr[1]}};
-    pwm_rt_plan(p, p->cur ^ 1u, now->ph0, &ramp);
-}
-
 bool leap_attach(exec *e) {
     void *mem = NULL;
     if (posix_memalign(&mem, 64u, sizeof(leap_tables)) != 0) {
@@ -629,7 +615,11 @@ bool leap_attach(exec *e) {
     leap_tables *L = mem;
     memset(L, 0, sizeof *L);
     if (e->drive.cfg.inverter == DRIVE_INVERTER_SWITCHING) {
-        plans_off(&e->drive.rt);
+        /* The leaps find the edges themselves (scan_signs()): the motor task's frame plans
+         * would only serve the few ordinary steps, at more than those steps cost, and the
+         * steps computed one by one give the plans' duties and states bit for bit (pwm_rt.h).
+         * Without plans (n = 0) every frame starts again in the one in force (pwm_rt_apply()). */
+        pwm_rt_frames(&e->drive.rt, 0u);
     }
     e->desk_run = leap_run;
     e->desk_ctx = L;

@@ -172,7 +172,6 @@ static inline int64_t fp_shr_round_i64(int64_t x, unsigned s) {
 #endif
 }
 
-
 /*
  * fp_shr_round_i64() for a shift that is not a compile-time constant (a
  * model's row or gain): the same value for every x and s, with one
