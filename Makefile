@@ -79,7 +79,7 @@ FORCE:
 define host_variant
 $(1)_DIR := $(BUILD)/$(1)
 $(1)_CFLAGS := $(COMMON) $(4) -DUUV_NUMERIC=$(NUM_$(3)) -D_POSIX_C_SOURCE=200809L $(INC) \
-    -Iports/linux $(HOST_SQRT) $(NATIVE_INT)
+    -Iports/linux $(HOST_SQRT) $(HOST_DIV) $(NATIVE_INT)
 $(1)_SRC_O := $$(patsubst %.c,$$($(1)_DIR)/obj/%.o,$(SRC_C) $(LINUX_PORT_C))
 $(1)_TEST_O := $$(patsubst %.c,$$($(1)_DIR)/obj/%.o,$(TEST_C))
 $(1)_UUVSIM_O := $$(patsubst %.c,$$($(1)_DIR)/obj/%.o,$(UUVSIM_C))
@@ -147,6 +147,10 @@ HOST_OPT := -O3 -g
 # x86-64 and AArch64 have IEEE square-root instructions in both precisions
 # (src/uuv_config.h, src/math/sqrt.c): the same bits as the integer version.
 HOST_SQRT := -DUUV_HW_SQRT_F64=1 -DUUV_HW_SQRT_F32=1 -fno-math-errno
+# ... and a 64-bit integer divide (src/uuv_config.h, UUV_HW_DIV_64); the
+# Cortex-M images divide a 64-bit value by a frame's count in three 32-bit
+# divisions instead: the same quotients.
+HOST_DIV := -DUUV_HW_DIV_64=1
 # GCC and Clang shift negative values arithmetically and narrow modulo 2^N
 # on every target (src/uuv_config.h, UUV_NATIVE_INT_OPS): the fixed-point
 # helpers then use the compiler's own shift and narrowing, the same values

@@ -195,7 +195,7 @@ static inline uint32_t num_frame_count(uint32_t n) { return n; }
 static inline q31_t num_frame_mean(int64_t sum, uint32_t n, uint32_t *sat) {
     int64_t scaled = sum * 8;
     int64_t half = (int64_t)(n / 2u);
-    int64_t q = (scaled >= 0) ? (scaled + half) / (int64_t)n : -((-scaled + half) / (int64_t)n);
+    int64_t q = (scaled >= 0) ? fp_div_i64_u32(scaled + half, n) : -fp_div_i64_u32(-scaled + half, n);
     return fp_sat_cnt_q31(q, sat);
 }
 
@@ -217,7 +217,7 @@ static inline int32_t num_fast_of_motor(q31_t i) { return fp_shr_round_i32(i, 3u
 
 /* What the last correction corr has still to bring after the mark: corr pending / n. */
 static inline int32_t num_pending(int32_t corr, uint32_t pending, uint32_t n) {
-    return (int32_t)(((int64_t)corr * (int64_t)pending) / (int64_t)n);
+    return (int32_t)fp_div_i64_u32((int64_t)corr * (int64_t)pending, n);
 }
 
 /* The EMF of a frame, Q3.28 of 1024 V: vbar - (i_end - i_start) / (a_ss h N). */
@@ -229,7 +229,7 @@ static inline int32_t num_emf(const num_consts *k, q31_t v_mean, q31_t i_end, q3
 
 /* Its change per fast step from the last frame's (FOH). */
 static inline int32_t num_emf_slope(int32_t e, int32_t e_prev, uint32_t n) {
-    return (int32_t)(((int64_t)e - e_prev) / (int64_t)n);
+    return (int32_t)fp_div_i64_u32((int64_t)e - e_prev, n);
 }
 
 /*
@@ -267,7 +267,7 @@ static inline int32_t num_emf_ahead(const num_consts *k, int32_t e, int32_t de, 
  */
 static inline void num_vdc_sums(int64_t *v_dc, int64_t *v_dc_sq, int64_t v_dc_sum, uint32_t n) {
     *v_dc += v_dc_sum;
-    int64_t vdc_mean = v_dc_sum / (int64_t)n;
+    int64_t vdc_mean = fp_div_i64_u32(v_dc_sum, n);
     *v_dc_sq += fp_shr_floor_i64(vdc_mean * vdc_mean, 28u) * (int64_t)n;
 }
 
@@ -284,7 +284,7 @@ static inline int64_t num_power(q31_t te, q31_t w) {
 
 /* One step of the speed's first-order filter with n steps' time constant. */
 static inline q31_t num_lowpass(q31_t filt, q31_t w, uint32_t n) {
-    return filt + (q31_t)(((int64_t)w - filt) / (int64_t)n);
+    return filt + (q31_t)fp_div_i64_u32((int64_t)w - filt, n);
 }
 
 static inline q31_t num_motor_w(const induction_motor_out_q *o) { return o->w; }

@@ -68,6 +68,18 @@
 #define UUV_NATIVE_INT_OPS 0
 #endif
 /*
+ * Whether the target divides 64-bit integers in one instruction
+ * (UUV_HW_DIV_64 1: x86-64 and AArch64, set by the Linux port). Without it
+ * (0, the default; the Cortex-M cores, whose library division of a 64-bit
+ * value takes about 70 instructions) a division of a 64-bit value by a
+ * count below 2^16, as the drive's frame means make, is done as three
+ * 32-bit divisions (fp_div_i64_u32(), src/fixedpoint/fixedpoint.h). The
+ * quotient is the same either way; only the cost differs.
+ */
+#ifndef UUV_HW_DIV_64
+#define UUV_HW_DIV_64 0
+#endif
+/*
  * A lean image (UUV_LEAN_IMAGE 1; 0 by default) leaves out what the
  * firmware never runs and a 64 KiB flash cannot also hold: the drive's
  * event and averaged inverter layers, its energy audit and its

@@ -38,6 +38,7 @@
 #define UUV_FIXEDPOINT_H
 
 #include <limits.h>
+#include <stdbool.h>
 #include <stdint.h>
 
 #include "uuv_config.h"
@@ -201,6 +202,45 @@ static inline int64_t fp_shr_round_var_i64(int64_t x, unsigned s) {
     const uint64_t a = ((uint64_t)x ^ m) >> k;
     return fp_from_u64_i64(((a >> 1) ^ m) + ((a ^ m) & (uint64_t)1));
 #endif
+}
+
+/* ---- Division by a count ----------------------------------------------- */
+
+/*
+ * floor(x / n) for a divisor 1 <= n <= 65535, exact for every x, in three
+ * 32-bit divisions: the high word, then the low word in two 16-bit digits
+ * (each partial dividend, the remainder so far and one digit, is below
+ * n 2^16 < 2^32, so each digit of the quotient is below 2^16). About 15
+ * instructions on a Cortex-M3/M4/M7, which divide 32-bit values only.
+ */
+static inline uint64_t fp_udiv_u64_u16(uint64_t x, uint32_t n) {
+    const uint32_t hi = (uint32_t)(x >> 32);
+    const uint32_t lo = (uint32_t)x;
+    const uint32_t q2 = hi / n;
+    const uint32_t m = ((hi - (q2 * n)) << 16) | (lo >> 16);
+    const uint32_t q1 = m / n;
+    const uint32_t l = ((m - (q1 * n)) << 16) | (lo & 0xffffu);
+    const uint32_t q0 = l / n;
+    return ((uint64_t)q2 << 32) | ((uint64_t)q1 << 16) | (uint64_t)q0;
+}
+
+/*
+ * x / n as C divides (truncated toward zero) for n >= 1 and every x: the
+ * compiler's division where the target has a 64-bit divide (UUV_HW_DIV_64,
+ * uuv_config.h) or n >= 2^16, else fp_udiv_u64_u16() of |x| with x's sign.
+ */
+static inline int64_t fp_div_i64_u32(int64_t x, uint32_t n) {
+    int64_t q;
+    if ((UUV_HW_DIV_64 != 0) || (n > 0xffffu)) {
+        q = x / (int64_t)n;
+    } else {
+        const bool neg = (x < 0);
+        const uint64_t m = neg ? (0u - (uint64_t)x) : (uint64_t)x;
+        const uint64_t u = fp_udiv_u64_u16(m, n);
+        const uint64_t r = neg ? ((uint64_t)0 - u) : u;
+        q = fp_from_u64_i64(r);
+    }
+    return q;
 }
 
 /* ---- Saturation -------------------------------------------------------- */

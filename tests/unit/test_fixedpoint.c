@@ -174,6 +174,50 @@ static void test_shifts_i64(void) {
     UT_EQ_INT(fp_shr_round_i64(-5, 0u), -5);
 }
 
+/*
+ * The division of a 64-bit value by a count (fp_udiv_u64_u16(), the three
+ * 32-bit divisions, and fp_div_i64_u32(), C's truncated quotient) against
+ * the compiler's 64-bit division (libgcc's on the Cortex-M images):
+ * operands across the whole range and its ends, small and random values
+ * (a frame's sums are small against 2^63), divisors from 1 to 2^16 - 1 and
+ * beyond (where fp_div_i64_u32() takes the compiler's division).
+ */
+static void test_div_count(void) {
+    static const uint32_t ns[] = {1u, 2u, 3u, 7u, 50u, 255u, 256u, 1000u, 40000u, 65534u,
+                                  65535u, 65536u, 1000000u, UINT32_MAX};
+    unsigned bad_u = 0u;
+    unsigned bad_s = 0u;
+    unsigned tried = 0u;
+
+    UT_TEST("fp_udiv_u64_u16 = floor(x/n) for n < 2^16 and fp_div_i64_u32 = x/n truncated, "
+            "every x range end, small and random x, reference: the compiler's 64-bit division");
+    lcg_state = 5u;
+    for (unsigned i = 0u; i < 600u; i++) {
+        int64_t x = operand_i64(i);
+        if ((i % 3u) == 1u) {
+            x = fp_shr_floor_i64(x, (unsigned)(lcg_next() % 60u)); /* small values too */
+        }
+        for (unsigned j = 0u; j < 16u; j++) {
+            const uint32_t n = (j < 14u) ? ns[j] : (uint32_t)(lcg_next() % 65535u) + 1u;
+            const uint64_t ux = (uint64_t)x;
+            if (n <= 0xffffu) {
+                bad_u += (fp_udiv_u64_u16(ux, n) != ux / n) ? 1u : 0u;
+            }
+            bad_s += (fp_div_i64_u32(x, n) != x / (int64_t)n) ? 1u : 0u;
+            tried++;
+        }
+    }
+    UT_EQ_INT(bad_u, 0);
+    UT_EQ_INT(bad_s, 0);
+    UT_EQ_INT(tried, 600 * 16);
+    UT_CHECK(fp_udiv_u64_u16(UINT64_MAX, 1u) == UINT64_MAX);
+    UT_CHECK(fp_udiv_u64_u16(UINT64_MAX, 65535u) == UINT64_MAX / 65535u);
+    UT_CHECK(fp_div_i64_u32(INT64_MIN, 1u) == INT64_MIN);
+    UT_EQ_INT(fp_div_i64_u32(-7, 2u), -3);
+    UT_EQ_INT(fp_div_i64_u32(7, 2u), 3);
+    UT_EQ_INT(fp_div_i64_u32(-1, 50u), 0);
+}
+
 static void test_shl(void) {
     uint32_t sat = 0u;
 
@@ -655,6 +699,7 @@ void suite_fixedpoint(void) {
     test_reinterpret();
     test_shifts_i32();
     test_shifts_i64();
+    test_div_count();
     test_shl();
     test_saturation();
     test_add_sub_q15();
