@@ -509,7 +509,7 @@ void drive_medium_task(drive_segment *d, bool control_due, bool slow_boundary) {
     }
     /* The next frame's references: exact at both ends, the chord between. */
     if (d->cfg.inverter == DRIVE_INVERTER_SWITCHING) {
-        DRIVE_NUM(pwm_rt_ramp)(&d->out.ramp, d->cmd.m, d->ref_ph, d->cmd.phase_inc, n);
+        DRIVE_NUM(pwm_rt_ramp)(&d->out.ramp, &d->ref_end, d->cmd.m, d->ref_ph, d->cmd.phase_inc, n);
         pwm_rt_prepare(&d->rt, &d->out.ramp);
         d->ref_ph += d->cmd.phase_inc * n;
     }

@@ -294,6 +294,7 @@ struct drive_segment {
     num_val corr_prev[2];       /* the last drift correction, steered out through the EMF */
     num_frac corr_pending;      /* how much of it is still to come at a frame's mark */
     uint32_t ref_ph;            /* reference phase at the start of the next frame to ramp */
+    pwm_rt_knots ref_end;       /* the references at the end of the last frame ramped */
     DRIVE_NUM(drive_control_out) cmd; /* the controller command in force */
     /* Slow-medium segment: the controller, its own task. */
     drive_control_params ctl_params;

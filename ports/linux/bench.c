@@ -433,9 +433,9 @@ static double van_error_pct(uint32_t step_ns, bool substep, double m) {
         if (k % frame == 0u) {
             pwm_rt_ramp ramp;
 #if UUV_NUMERIC == UUV_NUMERIC_FIXED
-            pwm_rt_ramp_q(&ramp, (int32_t)(m * 32768.0 + 0.5), ph, inc, frame);
+            pwm_rt_ramp_q(&ramp, NULL, (int32_t)(m * 32768.0 + 0.5), ph, inc, frame);
 #else
-            pwm_rt_ramp_f32(&ramp, (float)m, ph, inc, frame);
+            pwm_rt_ramp_f32(&ramp, NULL, (float)m, ph, inc, frame);
 #endif
             pwm_rt_apply(&rt, &ramp);
             ph += frame * inc;

@@ -937,7 +937,7 @@ static void test_fused_step(int fixed, int substep, double amp_a, uint32_t steps
             double w = 2.0 * MATH_PI_F64 * 50.0 * STEP_S * (double)k;
             if (k % 50u == 0u) {
                 pwm_rt_ramp ramp;
-                pwm_rt_ramp_q(&ramp, 29491, ref_ph, inc, 50u);
+                pwm_rt_ramp_q(&ramp, NULL, 29491, ref_ph, inc, 50u);
                 pwm_rt_apply(&rt, &ramp);
                 ref_ph += 50u * inc;
             }
@@ -969,7 +969,7 @@ static void test_fused_step(int fixed, int substep, double amp_a, uint32_t steps
             float w = (float)(2.0 * MATH_PI_F64 * 50.0 * STEP_S * (double)k);
             if (k % 50u == 0u) {
                 pwm_rt_ramp ramp;
-                pwm_rt_ramp_f32(&ramp, 0.9f, ref_ph, inc, 50u);
+                pwm_rt_ramp_f32(&ramp, NULL, 0.9f, ref_ph, inc, 50u);
                 pwm_rt_apply(&rt, &ramp);
                 ref_ph += 50u * inc;
             }

@@ -419,9 +419,9 @@ static void test_rt_against_exact(int fixed) {
         if (k % n == 0u) {
             pwm_rt_ramp ramp;
             if (fixed) {
-                pwm_rt_ramp_q(&ramp, fp_from_f64_q15(m), ref_ph, inc, n);
+                pwm_rt_ramp_q(&ramp, NULL, fp_from_f64_q15(m), ref_ph, inc, n);
             } else {
-                pwm_rt_ramp_f32(&ramp, (float)m, ref_ph, inc, n);
+                pwm_rt_ramp_f32(&ramp, NULL, (float)m, ref_ph, inc, n);
             }
             pwm_rt_apply(&rt, &ramp);
         }
@@ -478,9 +478,9 @@ static double rt_period(int fixed, int substep, double m, const int32_t *neg,
         if (k % n == 0u) {
             pwm_rt_ramp ramp;
             if (fixed) {
-                pwm_rt_ramp_q(&ramp, fp_from_f64_q15(m), ref_ph, inc, n);
+                pwm_rt_ramp_q(&ramp, NULL, fp_from_f64_q15(m), ref_ph, inc, n);
             } else {
-                pwm_rt_ramp_f32(&ramp, (float)m, ref_ph, inc, n);
+                pwm_rt_ramp_f32(&ramp, NULL, (float)m, ref_ph, inc, n);
             }
             pwm_rt_apply(&rt, &ramp);
             ref_ph += n * inc;
@@ -599,6 +599,51 @@ static void test_rt_duty_exact(void) {
     UT_CHECK(pwm_rt_duty(0x3fffffff, -0x3fffffff, 0u) >= 16383 && pwm_rt_duty(0x3fffffff, -0x3fffffff, 0u) <= 16384);
 }
 
+/*
+ * The ramps with the last frame's end kept (pwm_rt_knots) against the
+ * ramps formed from nothing, both builds: frames that start where the last
+ * ended (the drive's), the index changed every few frames, and frames
+ * that start elsewhere; every ramp the same, and the kept end taken in
+ * most frames.
+ */
+static void test_rt_ramp_knots(void) {
+    uint32_t rng = 0x2545F491u;
+    uint32_t bad = 0u, taken = 0u, frames = 0u;
+    pwm_rt_knots kq = {0};
+    pwm_rt_knots kf = {0};
+    uint32_t ph = 0x12345678u;
+    int32_t mq = 20000;
+    float mf = 0.6f;
+    for (uint32_t f = 0u; f < 4000u; f++) {
+        const uint32_t inc = 1000000u + ut_rand_u32(&rng) % 4000000u;
+        const uint32_t n = ((f % 13u) == 12u) ? 1u + ut_rand_u32(&rng) % 100u : 50u;
+        if ((f % 8u) == 0u) {
+            mq = (int32_t)(ut_rand_u32(&rng) % 32768u);
+            mf = (float)mq / 32768.0f;
+        }
+        if ((f % 29u) == 28u) {
+            ph = ut_rand_u32(&rng); /* a frame that starts elsewhere */
+        }
+        const bool hit = kq.valid && kq.ph == ph && kq.m_q15 == mq;
+        pwm_rt_ramp a, b;
+        pwm_rt_ramp_q(&a, &kq, mq, ph, inc, n);
+        pwm_rt_ramp_q(&b, NULL, mq, ph, inc, n);
+        bad += (a.r0[0] != b.r0[0] || a.r0[1] != b.r0[1] || a.dr[0] != b.dr[0] ||
+                a.dr[1] != b.dr[1]) ? 1u : 0u;
+        pwm_rt_ramp_f32(&a, &kf, mf, ph, inc, n);
+        pwm_rt_ramp_f32(&b, NULL, mf, ph, inc, n);
+        bad += (a.r0[0] != b.r0[0] || a.r0[1] != b.r0[1] || a.dr[0] != b.dr[0] ||
+                a.dr[1] != b.dr[1]) ? 1u : 0u;
+        taken += hit ? 1u : 0u;
+        frames++;
+        ph += inc * n;
+    }
+    ut_info("%u frames, the kept end taken in %u, %u ramps differing", (unsigned)frames,
+            (unsigned)taken, (unsigned)bad);
+    UT_EQ_INT(bad, 0);
+    UT_CHECK(taken > frames / 2u && taken < frames);
+}
+
 /* The set-up refuses what pwm.h refuses, and the interpolated edge mode. */
 static void test_rt_setup(void) {
     pwm_rt rt;
@@ -612,10 +657,10 @@ static void test_rt_setup(void) {
     UT_EQ_INT(pwm_rt_init(&rt, &p, STEP_NS), PWM_ERR_CARRIER);
     /* A ramp over one step ends on its knot; a negative slope rounds symmetrically. */
     pwm_rt_ramp r;
-    pwm_rt_ramp_q(&r, 32767, 0u, 0x40000000u, 1u);
+    pwm_rt_ramp_q(&r, NULL, 32767, 0u, 0x40000000u, 1u);
     UT_EQ_INT(r.r0[0], 0);
     UT_NEAR((double)(r.r0[0] + r.dr[0]) / PWM_RT_ONE, 1.0, 1e-4);
-    pwm_rt_ramp_q(&r, 32767, 0x40000000u, 0x40000000u, 3u);
+    pwm_rt_ramp_q(&r, NULL, 32767, 0x40000000u, 0x40000000u, 3u);
     UT_NEAR((double)r.dr[0] * 3.0 / PWM_RT_ONE, -1.0, 1e-4);
 }
 
@@ -732,6 +777,9 @@ void suite_pwm(void) {
     }
     UT_TEST("pwm_rt: set-up checks, ramps end on their knots");
     test_rt_setup();
+    UT_TEST("pwm_rt: ramps with the last frame's end kept = ramps formed from nothing (both "
+            "builds, index changes, frames started elsewhere)");
+    test_rt_ramp_knots();
     UT_TEST("pwm_rt: sub-step duty of a step against the exact crossing, within 2 Q15 counts");
     test_rt_duty_exact();
     UT_TEST("pwm_rt: sub-step switching, v_an fundamental within 0.5 % of m Vdc/2 for m = 0.1 "

@@ -127,8 +127,8 @@ static void test_long_ramp(void) {
             "full-scale sine), from the same first knot as a one-step ramp");
     pwm_rt_ramp one, many;
     const uint32_t quarter = 0x40000000u;
-    pwm_rt_ramp_q(&one, 32767, 0u, quarter, 1u);
-    pwm_rt_ramp_q(&many, 32767, 0u, quarter, 0x80000001u); /* ends a quarter turn on too */
+    pwm_rt_ramp_q(&one, NULL, 32767, 0u, quarter, 1u);
+    pwm_rt_ramp_q(&many, NULL, 32767, 0u, quarter, 0x80000001u); /* ends a quarter turn on too */
     UT_CHECK(one.dr[0] > (1 << 22));
     UT_EQ_INT(many.r0[0], one.r0[0]);
     UT_EQ_INT(many.r0[1], one.r0[1]);

@@ -110,11 +110,10 @@ static inline uint32_t edge_find(const rt_legs *g, uint32_t x, uint32_t a, uint3
 
 /* The events of a plan being written. */
 typedef struct {
-    pwm_rt_event *ev;
-    uint32_t n;      /* written */
-    uint32_t held;   /* the legs' states after the last */
-    bool need0;      /* its first step must be an event */
-    bool full;       /* handed over to single steps */
+    pwm_rt_event *v;    /* the next slot; NULL once handed over to single steps */
+    pwm_rt_event *end;  /* the slot a full plan hands over in (the first's PWM_RT_EVENTS on) */
+    uint32_t held;      /* the legs' states after the last event */
+    bool need0;         /* its first step must be an event */
 } rt_plan_out;
 
 /* Writes event v: step at, kind, the states s, the duties d. */
@@ -133,9 +132,9 @@ static inline int32_t held_duty(uint32_t s, uint32_t x) {
     return (int32_t)(((s >> x) & 1u) << 15);
 }
 
-/* Writes an event at step at: kind, the states s, whole-step duties. */
-static inline void event_put(rt_plan_out *o, uint32_t at, uint32_t s, uint8_t kind) {
-    event_set(&o->ev[o->n++], at, s, kind, held_duty(s, 0u), held_duty(s, 1u), held_duty(s, 2u));
+/* Writes event v at step at: kind, the states s, whole-step duties. */
+static inline void event_put(pwm_rt_event *v, uint32_t at, uint32_t s, uint8_t kind) {
+    event_set(v, at, s, kind, held_duty(s, 0u), held_duty(s, 1u), held_duty(s, 2u));
 }
 
 /*
@@ -144,33 +143,38 @@ static inline void event_put(rt_plan_out *o, uint32_t at, uint32_t s, uint8_t ki
  * the hand-over to single steps when the plan is full.
  */
 static inline void event_edges(rt_plan_out *o, uint32_t at, uint32_t mask, const int32_t duty[3],
-                        uint32_t s) {
-    if (o->full) {
-        return;
+                               uint32_t s) {
+    pwm_rt_event *v = o->v;
+    if (v != NULL) {
+        if (o->need0) {
+            o->need0 = false;
+            if (at != 0u) {
+                event_put(v, 0u, o->held, 0u);
+                v = &v[1];
+            }
+        }
+        if (v == o->end) {
+            event_set(v, at, 0u, (uint8_t)PWM_RT_PER_STEP, 0, 0, 0);
+            o->v = NULL;
+        } else {
+            const uint32_t h = (o->held & ~mask) | (s & mask);
+            o->held = h;
+            event_set(v, at, h, 1u, ((mask & 1u) != 0u) ? duty[0] : held_duty(h, 0u),
+                      ((mask & 2u) != 0u) ? duty[1] : held_duty(h, 1u),
+                      ((mask & 4u) != 0u) ? duty[2] : held_duty(h, 2u));
+            o->v = &v[1];
+        }
     }
-    if (o->need0 && at != 0u) {
-        event_put(o, 0u, o->held, 0u);
-    }
-    o->need0 = false;
-    if (o->n == PWM_RT_EVENTS) {
-        event_set(&o->ev[o->n++], at, 0u, (uint8_t)PWM_RT_PER_STEP, 0, 0, 0);
-        o->full = true;
-        return;
-    }
-    const uint32_t h = (o->held & ~mask) | (s & mask);
-    o->held = h;
-    event_set(&o->ev[o->n++], at, h, 1u, ((mask & 1u) != 0u) ? duty[0] : held_duty(h, 0u),
-              ((mask & 2u) != 0u) ? duty[1] : held_duty(h, 1u),
-              ((mask & 4u) != 0u) ? duty[2] : held_duty(h, 2u));
 }
 
 /*
  * The edges inside segment [a, b) of one carrier half of the legs of todo
  * (their signs at a and b differ; ea their comparisons at a, sb their
- * states at b) as events in step order, legs with the same step in one.
+ * states at b) as events in step order, legs with the same step in one:
+ * the legs sorted by their steps (three exchanges), then each step once.
  */
-static inline void segment_edges(const rt_legs *g, rt_plan_out *o, uint32_t a, uint32_t b, bool rising,
-                          const int32_t ea[3], uint32_t todo, uint32_t sb) {
+static inline void segment_edges(const rt_legs *g, rt_plan_out *o, uint32_t a, uint32_t b,
+                                 bool rising, const int32_t ea[3], uint32_t todo, uint32_t sb) {
     uint32_t t[3] = {UINT32_MAX, UINT32_MAX, UINT32_MAX};
     int32_t duty[3] = {0, 0, 0};
     for (uint32_t x = 0u; x < 3u; x++) {
@@ -178,16 +182,41 @@ static inline void segment_edges(const rt_legs *g, rt_plan_out *o, uint32_t a, u
             t[x] = edge_find(g, x, a, b, rising, ea[x], &duty[x]);
         }
     }
-    while (todo != 0u) {
-        const uint32_t at = (t[0] < t[1]) ? ((t[0] < t[2]) ? t[0] : t[2])
-                                          : ((t[1] < t[2]) ? t[1] : t[2]);
-        const uint32_t mask = (uint32_t)(t[0] == at) | ((uint32_t)(t[1] == at) << 1) |
-                              ((uint32_t)(t[2] == at) << 2);
-        event_edges(o, at, mask, duty, sb);
-        t[0] = ((mask & 1u) != 0u) ? UINT32_MAX : t[0];
-        t[1] = ((mask & 2u) != 0u) ? UINT32_MAX : t[1];
-        t[2] = ((mask & 4u) != 0u) ? UINT32_MAX : t[2];
-        todo &= ~mask;
+    /* The edges in step order (the legs without one last, at UINT32_MAX): steps t and legs m. */
+    uint32_t t0 = t[0];
+    uint32_t t1 = t[1];
+    uint32_t t2 = t[2];
+    uint32_t m0 = 1u;
+    uint32_t m1 = 2u;
+    uint32_t m2 = 4u;
+    uint32_t w;
+    if (t1 < t0) {
+        w = t0; t0 = t1; t1 = w;
+        w = m0; m0 = m1; m1 = w;
+    }
+    if (t2 < t1) {
+        w = t1; t1 = t2; t2 = w;
+        w = m1; m1 = m2; m2 = w;
+    }
+    if (t1 < t0) {
+        w = t0; t0 = t1; t1 = w;
+        w = m0; m0 = m1; m1 = w;
+    }
+    /* Each distinct step once, with the mask of its legs. */
+    if (t1 == t0) {
+        m1 |= m0;
+    } else {
+        event_edges(o, t0, m0, duty, sb);
+    }
+    if (t1 != UINT32_MAX) {
+        if (t2 == t1) {
+            event_edges(o, t1, m1 | m2, duty, sb);
+        } else {
+            event_edges(o, t1, m1, duty, sb);
+            if (t2 != UINT32_MAX) {
+                event_edges(o, t2, m2, duty, sb);
+            }
+        }
     }
 }
 
@@ -201,22 +230,22 @@ static inline void segment_edges(const rt_legs *g, rt_plan_out *o, uint32_t a, u
  * carrier, or out of range).
  */
 static inline bool edges_find(const pwm_rt *p, pwm_rt_frame *f, rt_plan_out *o, bool force0,
-                       uint32_t prev) {
+                              uint32_t prev) {
     const uint32_t n = p->n;
     const uint32_t inc = p->inc_c;
-    const int32_t lim = (int32_t)(inc >> 7);
+    const uint32_t lim = p->dr_lim;
     const rt_legs g = {f->ph0, inc,
                        {(uint32_t)f->r0[0], (uint32_t)f->r0[1], (uint32_t)(-f->r0[0] - f->r0[1])},
                        {(uint32_t)f->dr[0], (uint32_t)f->dr[1], (uint32_t)(-f->dr[0] - f->dr[1])},
                        p->den_sh};
-    if (n == 0u || n > 65535u || inc == 0u || inc >= 0x80000000u || f->r0[0] >= 0x1000000 ||
-        f->r0[0] <= -0x1000000 || f->r0[1] >= 0x1000000 || f->r0[1] <= -0x1000000) {
+    if (f->r0[0] >= 0x1000000 || f->r0[0] <= -0x1000000 || f->r0[1] >= 0x1000000 ||
+        f->r0[1] <= -0x1000000) {
         return false;
     }
     for (uint32_t x = 0u; x < 3u; x++) {
         const uint32_t mag = ((int32_t)g.dr[x] < 0) ? 0u - g.dr[x] : g.dr[x];
-        if ((int32_t)mag >= lim || (uint64_t)mag * n >= 0x1000000u) {
-            return false;
+        if (mag >= lim) {
+            return false; /* as fast as the carrier, or beyond the frame's range (dr_lim) */
         }
     }
     int32_t ea[3];
@@ -230,8 +259,15 @@ static inline bool edges_find(const pwm_rt *p, pwm_rt_frame *f, rt_plan_out *o, 
         const uint32_t to_half = 0x80000000u - (pa & 0x7fffffffu);
         const uint32_t steps = (to_half - 1u) / inc + 1u;
         const uint32_t b = (steps - 1u < n - a) ? a + steps - 1u : n;
-        int32_t eb[3] = {ea[0], ea[1], ea[2]};
-        const uint32_t sb = (b > a) ? e_legs(&g, b, eb) : sa;
+        int32_t eb[3];
+        uint32_t sb = sa;
+        if (b > a) {
+            sb = e_legs(&g, b, eb);
+        } else {
+            eb[0] = ea[0];
+            eb[1] = ea[1];
+            eb[2] = ea[2];
+        }
         /* Inside the segment: each leg's edge, in step order. */
         if ((sa ^ sb) != 0u) {
             segment_edges(&g, o, a, b, (pa & 0x80000000u) == 0u, ea, sa ^ sb, sb);
@@ -244,10 +280,11 @@ static inline bool edges_find(const pwm_rt *p, pwm_rt_frame *f, rt_plan_out *o, 
         sa = e_legs(&g, b + 1u, ea);
         const uint32_t mask = sb ^ sa;
         if (mask != 0u) {
-            int32_t duty[3];
+            int32_t duty[3] = {0, 0, 0};
             for (uint32_t x = 0u; x < 3u; x++) {
-                duty[x] = (((mask >> x) & 1u) != 0u) ? pwm_rt_edge_duty(eb[x], ea[x], p->den_sh)
-                                                    : 0;
+                if (((mask >> x) & 1u) != 0u) {
+                    duty[x] = pwm_rt_edge_duty(eb[x], ea[x], p->den_sh);
+                }
             }
             event_edges(o, b, mask, duty, sa);
         }
@@ -267,7 +304,8 @@ static inline bool edges_find(const pwm_rt *p, pwm_rt_frame *f, rt_plan_out *o, 
 static void plan_build(pwm_rt *p, uint32_t c, uint32_t ph, const pwm_rt_ramp *ramp, bool force0,
                        uint32_t prev) {
     pwm_rt_frame *f = &p->fr[c];
-    rt_plan_out o = {&p->ev[(size_t)c * (PWM_RT_EVENTS + 1u)], 0u, 0u, false, false};
+    pwm_rt_event *ev = &p->ev[(size_t)c * (PWM_RT_EVENTS + 1u)];
+    rt_plan_out o = {ev, &ev[PWM_RT_EVENTS], 0u, false};
     f->ph0 = ph;
     for (int x = 0; x < 2; x++) {
         f->r0[x] = ramp->r0[x];
@@ -279,15 +317,16 @@ static void plan_build(pwm_rt *p, uint32_t c, uint32_t ph, const pwm_rt_ramp *ra
         f->s0 = (uint8_t)state_bits(e[0], e[1], e[2]);
         pwm_rt_e_at(f, p->inc_c, p->n, e);
         f->s_end = (uint8_t)state_bits(e[0], e[1], e[2]);
-        o.n = 0u;
-        event_put(&o, 0u, 0u, (uint8_t)PWM_RT_PER_STEP);
-        return;
-    }
-    if (o.need0) {
-        event_put(&o, 0u, o.held, 0u);
-    }
-    if (!o.full) {
-        event_set(&o.ev[o.n], p->n, 0u, (uint8_t)PWM_RT_PER_STEP, 0, 0, 0);
+        event_put(ev, 0u, 0u, (uint8_t)PWM_RT_PER_STEP);
+    } else if (o.v != NULL) {
+        pwm_rt_event *v = o.v;
+        if (o.need0) {
+            event_put(v, 0u, o.held, 0u);
+            v = &v[1];
+        }
+        event_set(v, p->n, 0u, (uint8_t)PWM_RT_PER_STEP, 0, 0, 0);
+    } else {
+        /* full: the plan ends in its hand-over event */
     }
 }
 
@@ -305,10 +344,28 @@ void pwm_rt_prepare(pwm_rt *p, const pwm_rt_ramp *ramp) {
     p->fr[c].ready = true;
 }
 
+/*
+ * The bound a plan's slopes must stay below, |dr| < it: below the
+ * carrier's change per step, inc / 2^7 (each leg's comparison then
+ * monotone in each half), and with |dr| n below 2^24 (the references stay
+ * in range over the frame); 0, no plan, for frames of none or more than
+ * 65535 steps and for increments of none or half a turn or more.
+ */
+static uint32_t pwm_rt_slope_limit(uint32_t n, uint32_t inc) {
+    uint32_t lim = 0u;
+    if (n != 0u && n <= 65535u && inc != 0u && inc < 0x80000000u) {
+        const uint32_t range = (0xffffffu / n) + 1u;
+        lim = inc >> 7;
+        lim = (range < lim) ? range : lim;
+    }
+    return lim;
+}
+
 void pwm_rt_frames(pwm_rt *p, uint32_t n) {
     const pwm_rt_frame *now = &p->fr[p->cur];
     const pwm_rt_ramp ramp = {{now->r0[0], now->r0[1]}, {now->dr[0], now->dr[1]}};
     p->n = (UUV_LEAN_IMAGE != 0) ? 0u : n; /* a lean image plans nothing */
+    p->dr_lim = pwm_rt_slope_limit(p->n, p->inc_c);
     pwm_rt_plan(p, p->cur, now->ph0, &ramp);
     p->k = 0u;
     p->next = p->cur * (PWM_RT_EVENTS + 1u);
@@ -405,21 +462,62 @@ static int32_t ref_q(int32_t m_q15, uint32_t ph) {
     return fp_shr_floor_i32(m_q15 * (int32_t)wt_sin_q15(ph), 7u);
 }
 
-void pwm_rt_ramp_q(pwm_rt_ramp *out, int32_t m_q15, uint32_t ph, uint32_t inc, uint32_t n) {
-    const uint32_t ph1 = ph + inc * n; /* modulo 2^32: whole turns drop out */
-    const int32_t r0[2] = {ref_q(m_q15, ph), ref_q(m_q15, ph - WT_PHASE_120)};
-    const int32_t r1[2] = {ref_q(m_q15, ph1), ref_q(m_q15, ph1 - WT_PHASE_120)};
-    ramp_from_knots(out, r0, r1, n);
-}
-
 /* m sin(ph) in Q23, rounded: the Q31 conversion (saturating at +-1) rounded by 8 bits. */
 static int32_t ref_f32(float m, uint32_t ph) {
     return fp_shr_round_i32(fp_from_f32_q31(m * wt_sin_f32(ph)), 8u);
 }
 
-void pwm_rt_ramp_f32(pwm_rt_ramp *out, float m, uint32_t ph, uint32_t inc, uint32_t n) {
+/*
+ * A frame's start from the knots kept at the last one's end (same: formed
+ * with the same index), when it starts at their phase; false otherwise.
+ */
+static bool knots_start(const pwm_rt_knots *end, bool same, uint32_t ph, int32_t r0[2]) {
+    const bool hit = (end != NULL) && end->valid && same && (end->ph == ph);
+    if (hit) {
+        r0[0] = end->r[0];
+        r0[1] = end->r[1];
+    }
+    return hit;
+}
+
+/* Keeps a frame's end (phase ph1, references r1) for the next. */
+static void knots_keep(pwm_rt_knots *end, uint32_t ph1, const int32_t r1[2]) {
+    if (end != NULL) {
+        end->valid = true;
+        end->ph = ph1;
+        end->r[0] = r1[0];
+        end->r[1] = r1[1];
+    }
+}
+
+void pwm_rt_ramp_q(pwm_rt_ramp *out, pwm_rt_knots *end, int32_t m_q15, uint32_t ph, uint32_t inc,
+                   uint32_t n) {
+    const uint32_t ph1 = ph + inc * n; /* modulo 2^32: whole turns drop out */
+    int32_t r0[2];
+    if (!knots_start(end, (end != NULL) && (end->m_q15 == m_q15), ph, r0)) {
+        r0[0] = ref_q(m_q15, ph);
+        r0[1] = ref_q(m_q15, ph - WT_PHASE_120);
+    }
+    const int32_t r1[2] = {ref_q(m_q15, ph1), ref_q(m_q15, ph1 - WT_PHASE_120)};
+    ramp_from_knots(out, r0, r1, n);
+    knots_keep(end, ph1, r1);
+    if (end != NULL) {
+        end->m_q15 = m_q15;
+    }
+}
+
+void pwm_rt_ramp_f32(pwm_rt_ramp *out, pwm_rt_knots *end, float m, uint32_t ph, uint32_t inc,
+                     uint32_t n) {
     const uint32_t ph1 = ph + inc * n;
-    const int32_t r0[2] = {ref_f32(m, ph), ref_f32(m, ph - WT_PHASE_120)};
+    int32_t r0[2];
+    if (!knots_start(end, (end != NULL) && (end->m == m), ph, r0)) {
+        r0[0] = ref_f32(m, ph);
+        r0[1] = ref_f32(m, ph - WT_PHASE_120);
+    }
     const int32_t r1[2] = {ref_f32(m, ph1), ref_f32(m, ph1 - WT_PHASE_120)};
     ramp_from_knots(out, r0, r1, n);
+    knots_keep(end, ph1, r1);
+    if (end != NULL) {
+        end->m = m;
+    }
 }

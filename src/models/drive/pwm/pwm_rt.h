@@ -112,6 +112,7 @@ typedef struct {
     int32_t kd;       /* dead time over the step, t_d / T, Q16 (0: none) */
     uint32_t den_sh;  /* the duty division's pre-shift: a step's carrier change below 2^16 */
     uint32_t n;       /* steps per frame the plans cover (pwm_rt_frames; 0: step by step) */
+    uint32_t dr_lim;  /* a plan takes slopes of magnitude below it (pwm_rt_frames; 0: none) */
     pwm_rt_frame fr[2];
     pwm_rt_event ev[2u * (PWM_RT_EVENTS + 1u)];
 } pwm_rt;
@@ -140,6 +141,19 @@ static inline void pwm_rt_advance(pwm_rt *p) {
 }
 
 #define PWM_RT_DUTY_ONE 32768 /* a whole step's duty (Q15, as pwm.h's PWM_DUTY_ONE_Q) */
+
+/*
+ * The references at the end of the last frame ramped (pwm_rt_ramp_q/_f32),
+ * the start of the next one when it begins there with the same modulation
+ * index: its phase, the index in the build's arithmetic, the values.
+ */
+typedef struct {
+    uint32_t ph;      /* the reference phase they are at (leg a) */
+    int32_t m_q15;    /* the index they were formed with: fixed build */
+    float m;          /* float build */
+    int32_t r[2];     /* legs a and b, Q23 */
+    bool valid;       /* false until a frame has been ramped */
+} pwm_rt_knots;
 
 /* What the motor task hands the step for one frame: the references' start and slope. */
 typedef struct {
@@ -456,8 +470,15 @@ static inline void pwm_rt_states(const pwm_rt *p, int32_t s[3]) {
  * round((r1 - r0) / n), for both legs (b lags by 120 degrees). Fixed:
  * m Q15 in [0, 32767] (table sine Q15, product floored to Q23). Float: m
  * in [0, 1] (rounded to Q23). Motor-task work: one division per leg.
+ * With end (NULL: none), the references at the frame's end are kept there,
+ * and a frame that starts where the last one ramped ended, with the same
+ * index, takes them as its start instead of forming them again: the same
+ * values, two table sines fewer in the frames between the controller's
+ * commands.
  */
-void pwm_rt_ramp_q(pwm_rt_ramp *out, int32_t m_q15, uint32_t ph, uint32_t inc, uint32_t n);
-void pwm_rt_ramp_f32(pwm_rt_ramp *out, float m, uint32_t ph, uint32_t inc, uint32_t n);
+void pwm_rt_ramp_q(pwm_rt_ramp *out, pwm_rt_knots *end, int32_t m_q15, uint32_t ph, uint32_t inc,
+                   uint32_t n);
+void pwm_rt_ramp_f32(pwm_rt_ramp *out, pwm_rt_knots *end, float m, uint32_t ph, uint32_t inc,
+                     uint32_t n);
 
 #endif /* UUV_PWM_RT_H */
