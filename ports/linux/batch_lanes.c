@@ -168,7 +168,8 @@ typedef struct {
     /* Stage (power_stage_q / _f32): phases, DC link, inverter voltages, counts. */
     vs i_l[2], v_c[2], i_d[2], j_sh[2];
     vs v_dc, u[2], i_dc;
-    vu sat;
+    vu sat;  /* the stage's count of clamps before the run (it stops at UINT32_MAX) */
+    vu cnt;  /* the clamps in the run: at most 7 a step, added to sat at its end (lanes_count()) */
     /* Its coefficients and the battery companion (held over the run). */
     vs neg_eps_l, g_l2, neg_g_l, g_d, a_d, neg_a_d, k_node, neg_k_c;
     vs bat_e, bat_kg;
@@ -203,6 +204,7 @@ static void lanes_load(lanes *L, unsigned l, const drive_segment *d) {
     LANE(L->v_dc, l) = d->ps.v_dc;
     LANE(L->i_dc, l) = d->ps.i_dc;
     LANE(L->sat, l) = d->ps.sat_count;
+    LANE(L->cnt, l) = 0u;
     LANE(L->neg_eps_l, l) = d->ps.k.neg_eps_l;
     LANE(L->g_l2, l) = d->ps.k.g_l2;
     LANE(L->neg_g_l, l) = d->ps.k.neg_g_l;
@@ -256,8 +258,32 @@ static inline vi lane_carrier(vu ph) {
 /* pwm_rt_neg(): 1 where v < 0. */
 static inline vi lane_neg(vi v) { return (vi)((vu)v >> 31); }
 
-/* A mask (-1 / 0) as a count to add (1 / 0). */
-static inline vu lane_one(vi mask) { return (vu)mask & 1u; }
+/* A clamp where the mask is -1: counted (fp_count_sat()'s stop at UINT32_MAX: lanes_count()). */
+static inline void lane_count(vu *cnt, vi mask) { *cnt -= (vu)mask; }
+
+/*
+ * The run's clamps into the count: sat + cnt, UINT32_MAX where that
+ * overflows, which is the count of adding one per clamp and stopping at
+ * UINT32_MAX (the run's cnt is below 2^32: at most 7 a step).
+ */
+static inline void lanes_count(lanes *L) {
+    const vu s = L->sat + L->cnt;
+    L->sat = sel_u((vi)(s < L->sat), (vu){0} + UINT32_MAX, s);
+    L->cnt = (vu){0};
+}
+
+/* Whether any element of the mask is nonzero: an OR of its 64-bit words. */
+static inline bool lane_any(vi m) {
+    union {
+        vi v;
+        uint64_t w[sizeof(vi) / sizeof(uint64_t)];
+    } u = {m};
+    uint64_t o = 0u;
+    for (size_t i = 0u; i < sizeof(vi) / sizeof(uint64_t); i++) {
+        o |= u.w[i];
+    }
+    return o != 0u;
+}
 
 /*
  * The modulator's step: pwm_rt_substep() or pwm_rt_sampled(), then the
@@ -284,11 +310,7 @@ static inline void lane_duties(lanes *L, bool substep, vi duty[3]) {
             duty[x] = p1 & PWM_RT_DUTY_ONE;
             L->s[x] = lane_neg(-e1[x]);
         }
-        int32_t some = 0;
-        for (unsigned l = 0u; l < BATCH_W; l++) {
-            some |= LANE(any, l);
-        }
-        if (some != 0) {
+        if (lane_any(any)) {
             for (unsigned l = 0u; l < BATCH_W; l++) {
                 for (int x = 0; x < 3; x++) {
                     if (LANE(edge[x], l) != 0) {
@@ -325,9 +347,9 @@ static inline vul lane_mac(vul acc, vi x, vi c) {
 static inline vi lane_hi(vul acc) { return (vi)__builtin_convertvector(acc >> 32, vu); }
 
 /* ps_clamp_q(): within +-1 per unit (Q3.28), each clamp counted. */
-static inline vi lane_clamp(vi x, vu *sat) {
+static inline vi lane_clamp(vi x, vu *cnt) {
     const vi out = (vi)((vu)x + (uint32_t)PS_Q28_ONE > 2u * (uint32_t)PS_Q28_ONE);
-    *sat += lane_one(out & (vi)(*sat < UINT32_MAX));
+    lane_count(cnt, out);
     return sel_i(out, sel_i((vi)(x > 0), (vi){0} + PS_Q28_ONE, (vi){0} - PS_Q28_ONE), x);
 }
 
@@ -350,11 +372,11 @@ static inline void lane_phase(lanes *L, int x, vi dd, vl *t) {
     const vi j_l =
         lane_hi(lane_mac(lane_mac(lane_acc(i0), i0, L->neg_eps_l), L->u[x] - L->v_c[x], L->g_l2));
     const vi dv = lane_hi(lane_mac(lane_acc((vi){0}), j_l + L->j_sh[x] - im, L->k_node));
-    const vi i_l = lane_clamp(lane_hi(lane_mac(lane_acc(j_l), dv, L->neg_g_l)), &L->sat);
+    const vi i_l = lane_clamp(lane_hi(lane_mac(lane_acc(j_l), dv, L->neg_g_l)), &L->cnt);
     const vi i_d = lane_clamp(
         lane_hi(lane_mac(lane_mac(lane_acc(L->i_d[x]), L->i_d[x], L->neg_a_d), dv, L->g_d)),
-        &L->sat);
-    const vi v = lane_clamp(L->v_c[x] + dv, &L->sat);
+        &L->cnt);
+    const vi v = lane_clamp(L->v_c[x] + dv, &L->cnt);
     L->j_sh[x] = lane_shunt(L, i_l, i_d, im);
     L->v_c[x] = v;
     L->i_l[x] = i_l;
@@ -382,7 +404,7 @@ static inline void lane_step(lanes *L, bool substep) {
     L->v_dc = lane_clamp(
         lane_hi(lane_mac(lane_mac(lane_acc(L->v_dc), L->bat_e - L->v_dc, L->bat_kg), i_dc,
                          L->neg_k_c)),
-        &L->sat);
+        &L->cnt);
     L->i_dc = i_dc;
     L->sum_v_dc += __builtin_convertvector(L->v_dc, vl);
 }
@@ -392,10 +414,10 @@ static inline void lane_step(lanes *L, bool substep) {
 static inline vf sel_f(vi m, vf a, vf b) { return (vf)sel_i(m, (vi)a, (vi)b); }
 
 /* ps_clamp_f32(): x within +-lim, each clamp counted (fp_count_sat()). */
-static inline vf lane_clamp(vf x, float lim, vu *sat) {
+static inline vf lane_clamp(vf x, float lim, vu *cnt) {
     const vi hi = (vi)(x > lim);
     const vi lo = (vi)(x < -lim);
-    *sat += lane_one((hi | lo) & (vi)(*sat < UINT32_MAX));
+    lane_count(cnt, hi | lo);
     return sel_f(hi, (vf){0} + lim, sel_f(lo, (vf){0} - lim, x));
 }
 
@@ -405,11 +427,11 @@ static inline void lane_phase(lanes *L, int x, vf dd, vf *t) {
     const vf i0 = L->i_l[x];
     const vf j_l = (i0 + L->neg_eps_l * i0) + L->g_l2 * (L->u[x] - L->v_c[x]);
     const vf dv = L->k_node * ((j_l + L->j_sh[x]) - im);
-    const vf i_l = lane_clamp(j_l + L->neg_g_l * dv, PS_I_LIM_F32, &L->sat);
+    const vf i_l = lane_clamp(j_l + L->neg_g_l * dv, PS_I_LIM_F32, &L->cnt);
     const vf i_d =
-        lane_clamp((L->i_d[x] + L->neg_a_d * L->i_d[x]) + L->g_d * dv, PS_I_LIM_F32, &L->sat);
+        lane_clamp((L->i_d[x] + L->neg_a_d * L->i_d[x]) + L->g_d * dv, PS_I_LIM_F32, &L->cnt);
     L->j_sh[x] = ((i_l - im) - 2.0f * i_d) + L->a_d * i_d;
-    L->v_c[x] = lane_clamp(L->v_c[x] + dv, PS_V_LIM_F32, &L->sat);
+    L->v_c[x] = lane_clamp(L->v_c[x] + dv, PS_V_LIM_F32, &L->cnt);
     L->i_l[x] = i_l;
     L->i_d[x] = i_d;
     const vf term = dd * (i0 + i_l);
@@ -435,7 +457,7 @@ static inline void lane_step(lanes *L, bool substep) {
     lane_phase(L, 1, dq[1] - dq[2], &t);
     const vf i_dc = 0.5f * t;
     L->v_dc = lane_clamp(L->v_dc + (L->bat_kg * (L->bat_e - L->v_dc) + L->neg_k_c * t),
-                         PS_V_LIM_F32, &L->sat);
+                         PS_V_LIM_F32, &L->cnt);
     L->i_dc = i_dc;
     L->sum_v_dc += L->v_dc;
 }
@@ -457,6 +479,7 @@ static inline void lanes_run_on(lanes *L, uint32_t n, const bool substep) {
         }
     }
     for (int g = 0; g < BATCH_G; g++) {
+        lanes_count(&w[g]);
         L[g] = w[g];
     }
 }
