@@ -120,7 +120,8 @@ static void modulator_case(drive_modulator mod) {
     bool same = same_after(count, 47u, substep);
     drive_fast_run(&ex[0].drive, 47u);
     snprintf(what, sizeof what, "%s modulator, the stage at its clamps: equal byte for byte, "
-             "the clamps counted (%u), the counts near UINT32_MAX stopped there", substep ? "sub-step" : "sampled",
+             "the clamps counted (%u), the counts near UINT32_MAX stopped there",
+             substep ? "sub-step" : "sampled",
              (unsigned)(ex[0].drive.ps.sat_count - sat0));
     check(same && ex[0].drive.ps.sat_count > sat0, what);
 }
