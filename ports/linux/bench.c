@@ -20,10 +20,12 @@
  * layer's real-time factor is the best of five runs (one run takes well
  * under a millisecond).
  *
- * The speed-up is the single-rate run's CPU time over the multi-rate run's
- * (the exact fast path, the firmware's bits), both in this one program:
- * the same compiler, flags and square roots (uuv_config.h's UUV_HW_SQRT_*,
- * printed with the figure).
+ * The speed-up is the single-rate run's CPU time (best of two) over the
+ * multi-rate run's (best of three), both in this one program: the same
+ * compiler, flags and square roots (uuv_config.h's UUV_HW_SQRT_*, printed
+ * with the figure); for the exact fast path (the firmware's bits) and, in
+ * the float build, for the exact leaps (leap.h), whose figure the target
+ * line judges.
  *
  * With a third argument, the switching-error study follows (study()): the
  * sampled and sub-step modulators against the single-rate switching-event
@@ -618,16 +620,35 @@ int main(int argc, char **argv) {
     static run_data ref, ref_ev, mr, avg, cpl;
     exec_config c = cfg;
     c.single_rate = true;
-    if (run(&c, &ref) != 0) {
-        return 1;
+    double ref_cpu = 1e300; /* best of two: the speed-ups' reference */
+    for (int k = 0; k < 2; k++) {
+        if (run(&c, &ref) != 0) {
+            return 1;
+        }
+        ref_cpu = (ref.cpu_s < ref_cpu) ? ref.cpu_s : ref_cpu;
     }
+    ref.cpu_s = ref_cpu;
     c.inverter = DRIVE_INVERTER_EVENT;
     if (run(&c, &ref_ev) != 0) {
         return 1;
     }
-    if (run(&cfg, &mr) != 0) {
-        return 1;
+    /* The multi-rate run on the exact path and, where the build has them, with the exact
+     * leaps (leap.h): best of three each, interleaved; mr keeps an exact run's records. */
+    static run_data lp;
+    const bool have_leap = leap_available();
+    double mr_cpu = 1e300;
+    double lp_cpu = 1e300;
+    for (int k = 0; k < (have_leap ? 6 : 3); k++) {
+        run_leaps = have_leap && (k % 2 == 1);
+        run_data *r = run_leaps ? &lp : &mr;
+        double *best = run_leaps ? &lp_cpu : &mr_cpu;
+        if (run(&cfg, r) != 0) {
+            return 1;
+        }
+        *best = (r->cpu_s < *best) ? r->cpu_s : *best;
     }
+    run_leaps = false;
+    mr.cpu_s = mr_cpu;
     c = cfg;
     c.inverter = DRIVE_INVERTER_AVERAGED;
     double avg_cpu = 1e300;
@@ -644,25 +665,36 @@ int main(int argc, char **argv) {
     const double rtf_sw = sim_s / mr.cpu_s;
     const double rtf_avg = sim_s / avg_cpu;
     const double speedup = ref.cpu_s / mr.cpu_s;
+    const double speedup_leap = have_leap ? ref.cpu_s / lp_cpu : 0.0;
+    const errors le = have_leap ? compare(&lp, &ref) : e;
+    /* The target's figure: the leaps' where the build has them (the desk path). */
+    const double speedup_best = have_leap ? speedup_leap : speedup;
     /* The single-rate reference's square roots are the multi-rate run's (one program). */
     const char *const sqrt_kind = (UUV_HW_SQRT_F64 != 0 && UUV_HW_SQRT_F32 != 0) ? "hardware"
                                   : (UUV_HW_SQRT_F64 != 0 || UUV_HW_SQRT_F32 != 0) ? "mixed"
                                                                                  : "software";
-    const double err_max = (e.shaft > e.surge) ? e.shaft : e.surge;
+    const double err_ex = (e.shaft > e.surge) ? e.shaft : e.surge;
+    const double err_lp = (le.shaft > le.surge) ? le.shaft : le.surge;
+    const double err_max = (err_ex > err_lp) ? err_ex : err_lp;
 
     fprintf(stderr, "%s build, %.1f s of %s\n", UUV_NUMERIC_NAME, sim_s, argv[1]);
     fprintf(stderr, "  real-time factor: switching %.0f, averaged %.0f\n", rtf_sw, rtf_avg);
     fprintf(stderr, "  cost per step: fast %.1f ns (%.1f ns in runs), motor %.1f ns, "
                     "controller %.1f ns, slow %.0f ns\n",
             ns[0], ns[4], ns[1], ns[2], ns[3]);
-    fprintf(stderr, "  single-rate %.2f s, multi-rate %.4f s (CPU): speed-up %.0fx (exact "
-                    "path; both runs this program's, square roots %s)\n",
+    fprintf(stderr, "  single-rate %.2f s, multi-rate %.4f s (CPU, best of 3): speed-up %.0fx "
+                    "(exact path; both runs this program's, square roots %s)\n",
             ref.cpu_s, mr.cpu_s, speedup, sqrt_kind);
+    if (have_leap) {
+        fprintf(stderr, "  with the exact leaps %.4f s (best of 3): speed-up %.0fx; errors vs "
+                        "single-rate: shaft %.3f %%, surge %.3f %% (exact path %.3f %%, %.3f %%)\n",
+                lp_cpu, speedup_leap, le.shaft, le.surge, e.shaft, e.surge);
+    }
     fprintf(stderr,
             "  targets: real-time factor >= 100 switching (%s), >= 10000 averaged (%s); "
-            "speed-up >= 300 (%s) at shaft and surge errors <= 0.5 %% (%s)\n",
-            met(rtf_sw >= 100.0), met(rtf_avg >= 10000.0), met(speedup >= 300.0),
-            met(err_max <= 0.5));
+            "speed-up >= 300 (%s, %s) at shaft and surge errors <= 0.5 %% (%s)\n",
+            met(rtf_sw >= 100.0), met(rtf_avg >= 10000.0), have_leap ? "leaps" : "exact path",
+            met(speedup_best >= 300.0), met(err_max <= 0.5));
     fprintf(stderr, "  errors vs single-rate (RMS, %% of reference RMS):\n");
     fprintf(stderr, "    %-16s %8s %8s %8s %8s\n", "coupling", "shaft", "current", "surge",
             "position");
@@ -672,9 +704,18 @@ int main(int argc, char **argv) {
            "\"err_shaft_speed_pct\": %.6g, \"err_current_pct\": %.6g, "
            "\"err_surge_speed_pct\": %.6g, \"err_position_pct\": %.6g, "
            "\"ns_per_step\": {\"fast\": %.4g, \"fast_in_runs\": %.4g, \"medium\": %.4g, "
-           "\"control\": %.4g, \"slow\": %.4g}, \"couplings\": [",
+           "\"control\": %.4g, \"slow\": %.4g}, ",
            UUV_NUMERIC_NAME, sim_s, rtf_sw, rtf_avg, speedup, sqrt_kind, ref.cpu_s, mr.cpu_s, e.shaft,
            e.current, e.surge, e.position, ns[0], ns[4], ns[1], ns[2], ns[3]);
+    if (have_leap) {
+        printf("\"speedup_leap\": %.6g, \"cpu_leap_s\": %.6g, \"leap_err_shaft_speed_pct\": %.6g, "
+               "\"leap_err_surge_speed_pct\": %.6g, ",
+               speedup_leap, lp_cpu, le.shaft, le.surge);
+    } else {
+        printf("\"speedup_leap\": null, \"cpu_leap_s\": null, \"leap_err_shaft_speed_pct\": null, "
+               "\"leap_err_surge_speed_pct\": null, ");
+    }
+    printf("\"couplings\": [");
     bool first = true;
     for (int dn = 0; dn < 4; dn++) {
         for (int up = 0; up < 3; up++) {

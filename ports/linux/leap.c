@@ -364,16 +364,21 @@ static inline void block8(const double (*m)[8], const double *z, bool magnitude,
         _mm256_castsi256_pd(_mm256_set1_epi64x(magnitude ? 0x7FFFFFFFFFFFFFFF : (int64_t)-1));
     __m256d lo[4];
     __m256d hi[4];
-    for (int q = 0; q < 4; q++) {
-        lo[q] = _mm256_setzero_pd();
-        hi[q] = _mm256_setzero_pd();
-    }
 #pragma GCC unroll 16
     for (int c = 0; c < NZ; c++) {
         const int q = c & 3;
-        const __m256d zc = _mm256_and_pd(_mm256_broadcast_sd(&z[c]), mag);
-        lo[q] = _mm256_fmadd_pd(_mm256_load_pd(m[c]), zc, lo[q]);
-        hi[q] = _mm256_fmadd_pd(_mm256_load_pd(m[c] + 4), zc, hi[q]);
+        /* The magnitude's mask only where asked: the compiler keeps an AND with all ones. */
+        const __m256d zb = _mm256_broadcast_sd(&z[c]);
+        const __m256d zc = magnitude ? _mm256_and_pd(zb, mag) : zb;
+        if (c < 4) {
+            /* Each sum starts with its first product (a product added to zero is that
+             * product but for the sign of a zero, which no sum's use tells apart). */
+            lo[q] = _mm256_mul_pd(_mm256_load_pd(m[c]), zc);
+            hi[q] = _mm256_mul_pd(_mm256_load_pd(m[c] + 4), zc);
+        } else {
+            lo[q] = _mm256_fmadd_pd(_mm256_load_pd(m[c]), zc, lo[q]);
+            hi[q] = _mm256_fmadd_pd(_mm256_load_pd(m[c] + 4), zc, hi[q]);
+        }
     }
     _mm256_store_pd(out, _mm256_add_pd(_mm256_add_pd(lo[0], lo[1]), _mm256_add_pd(lo[2], lo[3])));
     _mm256_store_pd(out + 4,
