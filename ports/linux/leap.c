@@ -44,6 +44,12 @@ static const int z_jsh[2] = {Z_JSH_A, Z_JSH_B};
 
 #define NS 8 /* switch states, bit x = leg x high */
 
+/* The coefficients the map depends on: their places in key[] (and kd[]). */
+enum {
+    K_NEG_EPS_L = 0, K_G_L2, K_NEG_G_L, K_G_D, K_A_D, K_NEG_A_D, K_NODE, K_NEG_K_C, K_KG, K_L,
+    NK
+};
+
 /*
  * The leap's product y = T z and the bound's sum B |z|: in AVX2 with FMA
  * where the build's flags allow them (LEAP_ARCH in the Makefile), else in
@@ -79,49 +85,44 @@ struct leap_tables {
     double qmax[NS][NZ][NB];  /* running max of |Q_m| */
     uint32_t built[NS];       /* entries 0..built[s] are valid (0: only the identity) */
     bool have_m[NS];
-    float key[10];            /* the coefficients the tables were built from */
+    float key[NK];            /* the coefficients the tables were built from */
+    double kd[NK];            /* the same in double, for step_d() */
     bool keyed;
     leap_stats st;
 };
 
 bool leap_available(void) { return true; }
 
-/* The coefficients the map depends on, in the order of key[]. */
-static void key_of(const drive_segment *d, float key[10]) {
+/* The coefficients the map depends on, in key[]'s places (K_*). */
+static void key_of(const drive_segment *d, float key[NK]) {
     const ps_coef_f32 *k = &d->ps.k;
-    key[0] = k->neg_eps_l;
-    key[1] = k->g_l2;
-    key[2] = k->neg_g_l;
-    key[3] = k->g_d;
-    key[4] = k->a_d;
-    key[5] = k->neg_a_d;
-    key[6] = k->k_node;
-    key[7] = k->neg_k_c;
-    key[8] = d->in.battery.kg;
-    key[9] = d->k_l;
+    key[K_NEG_EPS_L] = k->neg_eps_l;
+    key[K_G_L2] = k->g_l2;
+    key[K_NEG_G_L] = k->neg_g_l;
+    key[K_G_D] = k->g_d;
+    key[K_A_D] = k->a_d;
+    key[K_NEG_A_D] = k->neg_a_d;
+    key[K_NODE] = k->k_node;
+    key[K_NEG_K_C] = k->neg_k_c;
+    key[K_KG] = d->in.battery.kg;
+    key[K_L] = d->k_l;
 }
 
 /*
  * One ordinary step of the real-time path in double, on z (linear in z:
  * the inputs are entries of z), in the exact path's operations
- * (fast_tick_rt(), power_stage_nodes.h) without its roundings. out: the
- * new z (inputs copied), outs: u_a, u_b, i_dc of the step.
+ * (fast_tick_rt(), power_stage_nodes.h) without its roundings, for the
+ * legs' duties dq (shares of the step, 0 to 1: a held state's 0 or 1, an
+ * edge's fraction). out: the new z (inputs copied), outs: u_a, u_b, i_dc
+ * of the step.
  */
-static void step_d(const float key[10], unsigned s, const double z[NZ], double out[NZ],
-                   double outs[3]) {
-    const double neg_eps_l = (double)key[0];
-    const double g_l2 = (double)key[1];
-    const double neg_g_l = (double)key[2];
-    const double g_d = (double)key[3];
-    const double a_d = (double)key[4];
-    const double neg_a_d = (double)key[5];
-    const double k_node = (double)key[6];
-    const double neg_k_c = (double)key[7];
-    const double kg = (double)key[8];
-    const double k_l = (double)key[9];
-    const double sa = (double)(s & 1u);
-    const double sb = (double)((s >> 1) & 1u);
-    const double sc = (double)((s >> 2) & 1u);
+static inline void step_d(const double kd[NK], const double dq[3], const double z[NZ],
+                          double out[NZ], double outs[3]) __attribute__((always_inline));
+static inline void step_d(const double kd[NK], const double dq[3], const double z[NZ],
+                          double out[NZ], double outs[3]) {
+    const double sa = dq[0];
+    const double sb = dq[1];
+    const double sc = dq[2];
     const double w[2] = {2.0 * sa - sb - sc, 2.0 * sb - sa - sc};
     const double dd[2] = {sa - sc, sb - sc};
     const double v3 = z[Z_VDC] * (double)(1.0f / 3.0f);
@@ -133,21 +134,21 @@ static void step_d(const float key[10], unsigned s, const double z[NZ], double o
         const double id = z[z_id[x]];
         const double jsh = z[z_jsh[x]];
         const double im = z[Z_IF_A + x];
-        const double jl = (i0 + neg_eps_l * i0) + g_l2 * (u - vc);
-        const double dv = k_node * ((jl + jsh) - im);
-        const double il = jl + neg_g_l * dv;
-        const double idn = (id + neg_a_d * id) + g_d * dv;
+        const double jl = (i0 + kd[K_NEG_EPS_L] * i0) + kd[K_G_L2] * (u - vc);
+        const double dv = kd[K_NODE] * ((jl + jsh) - im);
+        const double il = jl + kd[K_NEG_G_L] * dv;
+        const double idn = (id + kd[K_NEG_A_D] * id) + kd[K_G_D] * dv;
         const double vcn = vc + dv;
         out[z_il[x]] = il;
         out[z_vc[x]] = vcn;
         out[z_id[x]] = idn;
-        out[z_jsh[x]] = ((il - im) - 2.0 * idn) + a_d * idn;
-        out[Z_IF_A + x] = im + (vcn - z[Z_E_A + x]) * k_l;
+        out[z_jsh[x]] = ((il - im) - 2.0 * idn) + kd[K_A_D] * idn;
+        out[Z_IF_A + x] = im + (vcn - z[Z_E_A + x]) * kd[K_L];
         t += dd[x] * (i0 + il);
         outs[x] = u;
     }
     const double i_dc = 0.5 * t;
-    out[Z_VDC] = z[Z_VDC] + (kg * (z[Z_EV] - z[Z_VDC]) + neg_k_c * t); /* of the sum t */
+    out[Z_VDC] = z[Z_VDC] + (kd[K_KG] * (z[Z_EV] - z[Z_VDC]) + kd[K_NEG_K_C] * t); /* of the sum t */
     out[Z_E_A] = z[Z_E_A];
     out[Z_E_B] = z[Z_E_B];
     out[Z_EV] = z[Z_EV];
@@ -156,10 +157,11 @@ static void step_d(const float key[10], unsigned s, const double z[NZ], double o
 
 /* The one-step map of state s, from the step on the unit vectors. */
 static void build_step(leap_tables *L, unsigned s) {
+    const double dq[3] = {(double)(s & 1u), (double)((s >> 1) & 1u), (double)((s >> 2) & 1u)};
     for (int c = 0; c < NZ; c++) {
         double z[NZ] = {0.0};
         z[c] = 1.0;
-        step_d(L->key, s, z, L->m[s][c], L->mo[s][c]);
+        step_d(L->kd, dq, z, L->m[s][c], L->mo[s][c]);
     }
     L->have_m[s] = true;
 }
@@ -247,12 +249,15 @@ static void build_to(leap_tables *L, unsigned s, uint32_t k) {
 
 /* The tables follow the coefficients: built again from scratch when any changed. */
 static void tables_check(leap_tables *L, const drive_segment *d) {
-    float key[10];
+    float key[NK];
     key_of(d, key);
     if (L->keyed && memcmp(key, L->key, sizeof key) == 0) {
         return;
     }
     memcpy(L->key, key, sizeof key);
+    for (int i = 0; i < NK; i++) {
+        L->kd[i] = (double)key[i];
+    }
     L->keyed = true;
     for (unsigned s = 0u; s < NS; s++) {
         L->built[s] = 0u;
@@ -473,31 +478,91 @@ static void product(const leap_entry *en, const double *z, double *y, double *bn
 #endif
 
 /*
- * k steps of switch state s as one map, if the bound allows (leap.h):
- * returns false, the drive unchanged, otherwise. last: the run ends here
- * (the last step's inverter voltages and DC-link current are formed).
+ * A run's state in double between its two ends (run_load(), run_store()):
+ * the leaps and the steps in double work on it, and the drive's float
+ * state is formed from it once, at the run's end or before an ordinary
+ * step.
  */
-static bool leap_take(leap_tables *L, drive_segment *d, unsigned s, uint32_t k, bool last)
-    __attribute__((noinline));
-static bool leap_take(leap_tables *L, drive_segment *d, unsigned s, uint32_t k, bool last) {
-    if (L->built[s] < k) {
-        build_to(L, s, k);
-    }
-    const leap_entry *en = &L->e[s][k];
-    power_stage_f32 *ps = &d->ps;
+typedef struct {
+    double z[16] __attribute__((aligned(64))); /* z (leap.h), the last two zero */
+    double y[NR] __attribute__((aligned(64))); /* a leap's product (leap_take()) */
+    double sum[3];  /* the frame sums of v_C a, v_C b, v_dc since the load */
+    double u[2];    /* the last step's inverter voltages (a step in double) ... */
+    double v_dc;    /* ... or its DC link at its start, for them (a leap: u_valid false) */
+    double i_dc;    /* its DC-link current */
+    unsigned s;     /* the legs' states at the last step's end */
+    bool u_valid;   /* u holds the last step's voltages (else they come from v_dc and s) */
+    bool stepped;   /* a step was taken since the load (u or v_dc, i_dc, s hold) */
+} run_z;
+
+/* The run's state from the drive's. */
+static void run_load(run_z *r, const drive_segment *d) {
+    const power_stage_f32 *ps = &d->ps;
     const float zf[NZ] = {
         ps->ph[0].i_l, ps->ph[0].v_c, ps->ph[0].i_d, ps->ph[1].i_l,
         ps->ph[1].v_c, ps->ph[1].i_d, ps->v_dc,      ps->ph[0].j_sh,
         ps->ph[1].j_sh, d->i_fast[0], d->i_fast[1],  d->e[0],
         d->e[1],       d->in.battery.e_v,
     };
-    double z[16] __attribute__((aligned(64)));
     for (int c = 0; c < NZ; c++) {
-        z[c] = (double)zf[c];
+        r->z[c] = (double)zf[c];
     }
-    z[14] = 0.0;
-    z[15] = 0.0;
-    double y[NR] __attribute__((aligned(64)));
+    r->z[14] = 0.0;
+    r->z[15] = 0.0;
+    r->sum[0] = 0.0;
+    r->sum[1] = 0.0;
+    r->sum[2] = 0.0;
+    r->stepped = false;
+}
+
+/* The drive's state from the run's: its float states, the frame sums, the last step's outputs. */
+static void run_store(const run_z *r, drive_segment *d) {
+    if (!r->stepped) {
+        return;
+    }
+    power_stage_f32 *ps = &d->ps;
+    for (int x = 0; x < 2; x++) {
+        ps_phase_f32 *ph = &ps->ph[x];
+        ph->i_l = (float)r->z[z_il[x]];
+        ph->v_c = (float)r->z[z_vc[x]];
+        ph->i_d = (float)r->z[z_id[x]];
+        ph->j_sh = (float)r->z[z_jsh[x]];
+        d->i_fast[x] = (float)r->z[Z_IF_A + x];
+        d->sums.v_cap[x] += (float)r->sum[x];
+    }
+    if (r->u_valid) {
+        ps->u[0] = (float)r->u[0];
+        ps->u[1] = (float)r->u[1];
+    } else {
+        /* A leap's last step: its inverter voltages as the step forms them from its v_dc. */
+        const double v3 = r->v_dc * (double)(1.0f / 3.0f);
+        const double sa = (double)(r->s & 1u);
+        const double sb = (double)((r->s >> 1) & 1u);
+        const double sc = (double)((r->s >> 2) & 1u);
+        ps->u[0] = (float)(v3 * (2.0 * sa - sb - sc));
+        ps->u[1] = (float)(v3 * (2.0 * sb - sa - sc));
+    }
+    ps->v_dc = (float)r->z[Z_VDC];
+    d->sums.v_dc += (float)r->sum[2];
+    ps->i_dc = (float)r->i_dc;
+    for (unsigned x = 0u; x < 3u; x++) {
+        d->s[x] = (int32_t)((r->s >> x) & 1u);
+    }
+}
+
+/*
+ * k steps of switch state s as one map on the run's state, if the bound
+ * allows (leap.h): returns false, the run unchanged, otherwise.
+ */
+static bool leap_take(leap_tables *L, drive_segment *d, run_z *r, unsigned s, uint32_t k)
+    __attribute__((noinline));
+static bool leap_take(leap_tables *L, drive_segment *d, run_z *r, unsigned s, uint32_t k) {
+    if (L->built[s] < k) {
+        build_to(L, s, k);
+    }
+    const leap_entry *en = &L->e[s][k];
+    double *z = r->z;
+    double *y = r->y;
     /* The bound on rows 0..7: max(|z|, |y|) + the second-difference term. */
 #if LEAP_AVX2
     const bool ok = product_bounded(en, z, y);
@@ -515,33 +580,75 @@ static bool leap_take(leap_tables *L, drive_segment *d, unsigned s, uint32_t k, 
         L->st.bound_fails++;
         return false;
     }
-    for (int x = 0; x < 2; x++) {
-        ps_phase_f32 *ph = &ps->ph[x];
-        ph->i_l = (float)y[z_il[x]];
-        ph->v_c = (float)y[z_vc[x]];
-        ph->i_d = (float)y[z_id[x]];
-        ph->j_sh = (float)y[z_jsh[x]];
-        d->i_fast[x] = (float)y[Z_IF_A + x];
-        d->sums.v_cap[x] += (float)y[R_SUM + x];
+    for (int c = 0; c < NX; c++) {
+        z[c] = y[c];
     }
-    ps->v_dc = (float)y[Z_VDC];
-    d->sums.v_dc += (float)y[R_SUM + 2];
-    if (last) {
-        /* The last step's inverter voltages as the step forms them from its v_dc. */
-        const double v3 = y[R_VDC_LAST] * (double)(1.0f / 3.0f);
-        const double sa = (double)(s & 1u);
-        const double sb = (double)((s >> 1) & 1u);
-        const double sc = (double)((s >> 2) & 1u);
-        ps->u[0] = (float)(v3 * (2.0 * sa - sb - sc));
-        ps->u[1] = (float)(v3 * (2.0 * sb - sa - sc));
-        ps->i_dc = (float)y[R_IDC_LAST];
-    }
+    r->sum[0] += y[R_SUM + 0];
+    r->sum[1] += y[R_SUM + 1];
+    r->sum[2] += y[R_SUM + 2];
+    r->v_dc = y[R_VDC_LAST];
+    r->i_dc = y[R_IDC_LAST];
+    r->s = s;
+    r->u_valid = false;
+    r->stepped = true;
     pwm_rt_skip_substep(&d->rt, k); /* unplanned (leap_attach()) */
-    for (unsigned x = 0u; x < 3u; x++) {
-        d->s[x] = (int32_t)((s >> x) & 1u);
-    }
     L->st.leaps++;
     L->st.leap_steps += k;
+    return true;
+}
+
+/*
+ * One step on the run's state in double (step_d()) with the duties and
+ * states the modulator gives it (pwm_rt_substep_each()'s, by the same
+ * comparisons and pwm_rt_duty()), if no clamped component comes near its
+ * limit (the bound's limits, bound_lim): returns false, the run and the
+ * modulator unchanged, otherwise.
+ */
+static bool step_take(leap_tables *L, drive_segment *d, run_z *r) {
+    pwm_rt *p = &d->rt;
+    int32_t e0[3];
+    int32_t e1[3];
+    pwm_rt_ends(p, e0, e1);
+    double dq[3];
+    unsigned s = 0u;
+    for (unsigned x = 0u; x < 3u; x++) {
+        /* The duty as the stage takes it (ps_fast_legs_f32(): a float share of the step). */
+        dq[x] = (double)((float)pwm_rt_duty(e0[x], e1[x], p->den_sh) * (1.0f / 32768.0f));
+        s |= (unsigned)pwm_rt_neg(-e1[x]) << x;
+    }
+    double out[16] __attribute__((aligned(64)));
+    double outs[3];
+    step_d(L->kd, dq, r->z, out, outs);
+#if LEAP_AVX2
+    const __m256d mag = _mm256_castsi256_pd(_mm256_set1_epi64x(0x7FFFFFFFFFFFFFFF));
+    const __m256d in0 = _mm256_cmp_pd(_mm256_and_pd(_mm256_load_pd(out), mag),
+                                      _mm256_load_pd(bound_lim), _CMP_LE_OQ);
+    const __m256d in1 = _mm256_cmp_pd(_mm256_and_pd(_mm256_load_pd(out + 4), mag),
+                                      _mm256_load_pd(bound_lim + 4), _CMP_LE_OQ);
+    const bool ok = _mm256_movemask_pd(_mm256_and_pd(in0, in1)) == 0xF; /* false for a NaN too */
+#else
+    bool ok = true;
+    for (int i = 0; i < NB; i++) {
+        ok &= (fabs(out[i]) <= bound_lim[i]); /* false for a NaN too */
+    }
+#endif
+    if (!ok) {
+        return false;
+    }
+    for (int c = 0; c < NX; c++) {
+        r->z[c] = out[c];
+    }
+    r->sum[0] += out[Z_VC_A];
+    r->sum[1] += out[Z_VC_B];
+    r->sum[2] += out[Z_VDC];
+    r->u[0] = outs[0];
+    r->u[1] = outs[1];
+    r->i_dc = outs[2];
+    r->s = s;
+    r->u_valid = true;
+    r->stepped = true;
+    pwm_rt_skip_substep(p, 1u);
+    L->st.dsteps++;
     return true;
 }
 
@@ -561,11 +668,20 @@ static void ordinary(leap_tables *L, drive_segment *d, uint32_t n) {
     L->st.steps += n;
 }
 
-/* A stretch of k steps with no edge in switch state s: leaps, or ordinary steps. */
-static void stretch(leap_tables *L, drive_segment *d, unsigned s, uint32_t k, bool ends_run) {
+/* One step of the run: in double, or (near a clamp) an ordinary step on the drive's state. */
+static void step_one(leap_tables *L, drive_segment *d, run_z *r) {
+    if (!step_take(L, d, r)) {
+        run_store(r, d);
+        ordinary(L, d, 1u);
+        run_load(r, d);
+    }
+}
+
+/* A stretch of k steps with no edge in switch state s: leaps, or steps one by one. */
+static void stretch(leap_tables *L, drive_segment *d, run_z *r, unsigned s, uint32_t k) {
     while (k >= LEAP_K_MIN) {
         uint32_t m = (k < LEAP_K_MAX) ? k : LEAP_K_MAX;
-        while (m >= LEAP_K_MIN && !leap_take(L, d, s, m, ends_run && m == k)) {
+        while (m >= LEAP_K_MIN && !leap_take(L, d, r, s, m)) {
             m /= 2u; /* the bound refused: a shorter leap */
         }
         if (m < LEAP_K_MIN) {
@@ -573,8 +689,8 @@ static void stretch(leap_tables *L, drive_segment *d, unsigned s, uint32_t k, bo
         }
         k -= m;
     }
-    if (k > 0u) {
-        ordinary(L, d, k);
+    for (; k > 0u; k--) {
+        step_one(L, d, r);
     }
 }
 
@@ -585,6 +701,8 @@ static void leap_run(void *ctx, drive_segment *d, uint32_t n) {
         return;
     }
     tables_check(L, d);
+    run_z r;
+    run_load(&r, d);
     uint32_t done = 0u;
     while (done < n) {
         const uint32_t m = (n - done < SCAN_MAX) ? n - done : SCAN_MAX;
@@ -600,16 +718,17 @@ static void leap_run(void *ctx, drive_segment *d, uint32_t n) {
             uint32_t i = (ahead != 0u) ? j + (uint32_t)__builtin_ctzll(ahead) : m;
             /* Steps j..i-1 hold the legs' states; step i (if i < m) has an edge. */
             if (i > j) {
-                stretch(L, d, signs_at(leg, j), i - j, done + i == n);
+                stretch(L, d, &r, signs_at(leg, j), i - j);
             }
             if (i < m) {
-                ordinary(L, d, 1u);
+                step_one(L, d, &r);
                 i++;
             }
             j = i;
         }
         done += m;
     }
+    run_store(&r, d);
 }
 
 bool leap_attach(exec *e) {
@@ -620,9 +739,10 @@ bool leap_attach(exec *e) {
     leap_tables *L = mem;
     memset(L, 0, sizeof *L);
     if (e->drive.cfg.inverter == DRIVE_INVERTER_SWITCHING) {
-        /* The leaps find the edges themselves (scan_signs()): the motor task's frame plans
-         * would only serve the few ordinary steps, at more than those steps cost, and the
-         * steps computed one by one give the plans' duties and states bit for bit (pwm_rt.h).
+        /* The leaps find the edges themselves (scan_signs()) and the steps in double form
+         * their duties from the comparisons: the motor task's frame plans would only serve
+         * the rare ordinary steps, at more than those steps cost, and the steps computed one
+         * by one give the plans' duties and states bit for bit (pwm_rt.h).
          * Without plans (n = 0) every frame starts again in the one in force (pwm_rt_apply()). */
         pwm_rt_frames(&e->drive.rt, 0u);
     }

@@ -21,18 +21,24 @@
  * state) are built in double from the step's own float coefficients, on
  * first use, and again whenever the DC-link coefficients or the
  * companion's gain change (the battery companion's conductance: at slow
- * boundaries). A leap is taken for a stretch of at least LEAP_K_MIN steps;
- * a step with an edge (the sub-step modulator's fractional duty), shorter
- * stretches, and anything off the path above are ordinary steps
- * (drive_fast_run()).
+ * boundaries). A leap is taken for a stretch of at least LEAP_K_MIN steps.
+ * A step with an edge (the sub-step modulator's fractional duty) and a
+ * stretch shorter than that are steps in double, one at a time: the same
+ * step (the one the tables are built from) with the legs' duties the
+ * modulator gives it, a held leg's 0 or 1, an edge's share of the step
+ * (pwm_rt_ends(), pwm_rt_duty()), taken when none of its clamped
+ * components comes within 0.1 % of its clamp. A run keeps z in double from
+ * its start to its end: the drive's float state is formed once, at the
+ * run's end, with the frame sums over the run and the last step's inverter
+ * voltages and DC-link current. A step near a clamp (the exact path's
+ * float step then clamps) is an ordinary step on the drive's state, and
+ * anything off the path above runs ordinary steps (drive_fast_run()).
  *
- * Finding the stretch. A leg's comparison e = r - c is strictly monotone
- * on each half of the carrier (the reference's change per step is checked
- * below the carrier's, else the whole run steps), so its sign changes at
- * most once there: the stretch ends at the first grid point whose leg signs
- * differ from the first's, found by comparing each half's last point and
- * bisecting the half where they differ. The signs are the exact path's
- * (the same integer carrier and references).
+ * Finding the stretches. At each of the run's grid points (up to 64 at a
+ * time) the legs' signs of e = r - c are formed with the exact path's
+ * integer carrier and references (pwm_rt_ends()'s sums): a step whose two
+ * ends differ in some leg's sign has an edge, the steps between two edges
+ * hold the legs' states.
  *
  * No clamp is crossed inside a leap (the bound). The stage clamps i_L, i_d
  * to 256 A and v_C, v_dc to 1024 V. For a leap of k steps and a clamped
@@ -42,9 +48,9 @@
  *   |x_j| <= max(|x_0|, |x_k|) + (k^2 / 8) sum_c max_{m <= k-2} |Q_m[x, c]| |z_c|
  * for every j, and the leap is taken only when this is below the limit
  * less 0.1 % (for the exact path's float rounding and the tables'); else
- * half the stretch is tried, down to ordinary steps. The bound holds for
- * the model's real arithmetic; what the leap computes differs from the
- * exact path's float steps by rounding only.
+ * half the stretch is tried, down to steps in double. The bound holds for
+ * the model's real arithmetic; what the leaps and the steps in double
+ * compute differs from the exact path's float steps by rounding only.
  *
  * Results: the same run gives the same bytes every time (no threads, a
  * fixed order of operations); they are not the exact path's bits, but
@@ -67,6 +73,7 @@
 typedef struct {
     uint64_t leaps;        /* leaps taken */
     uint64_t leap_steps;   /* fast steps they covered */
+    uint64_t dsteps;       /* fast steps taken one at a time in double inside runs (edges) */
     uint64_t steps;        /* fast steps taken as ordinary steps inside runs */
     uint64_t bound_fails;  /* leaps refused by the clamp bound (shortened or stepped) */
     uint64_t rebuilds;     /* table invalidations (coefficient changes) */

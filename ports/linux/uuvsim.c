@@ -192,10 +192,11 @@ static void print_json(FILE *f_out, const run_result *r) {
         /* Leap runs only: the exact path's summary keeps its bytes. */
         const leap_stats ls = leap_stats_of(e);
         fprintf(f_out, "  \"fast_path\": \"leap\",\n  \"leaps\": {\"leaps\": %llu, "
-                "\"steps_in_leaps\": %llu, \"steps_in_runs\": %llu, \"bound_refusals\": %llu, "
-                "\"table_builds\": %llu},\n",
+                "\"steps_in_leaps\": %llu, \"steps_in_double\": %llu, \"steps_in_runs\": %llu, "
+                "\"bound_refusals\": %llu, \"table_builds\": %llu},\n",
                 (unsigned long long)ls.leaps, (unsigned long long)ls.leap_steps,
-                (unsigned long long)ls.steps, (unsigned long long)ls.bound_fails,
+                (unsigned long long)ls.dsteps, (unsigned long long)ls.steps,
+                (unsigned long long)ls.bound_fails,
                 (unsigned long long)ls.rebuilds);
     }
     fprintf(f_out, "  \"modulator\": \"%s\",\n  \"dead_time_s\": %.9g,\n",
