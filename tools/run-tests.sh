@@ -157,6 +157,17 @@ run "host wavetable_data.c = generator" pass "$BUILD/tools/gen_wavetables" --che
     src/fixedpoint/wavetable_data.c
 
 run "host lint (cppcheck MISRA, clang-tidy)" pass sh tools/lint.sh
+# The desk's vector code in its portable form (no AVX2 leaps, the compiler's baseline lanes):
+# what a host without AVX2 and FMA, or an AArch64 one, builds.
+portable="$BUILD/portable"
+portable_make="make -s --no-print-directory BUILD=$portable LEAP_ARCH= BATCH_LANES_FLAGS="
+serial "host linux-float leaps, portable form (LEAP_ARCH=)" pass sh -c \
+    "$portable_make $portable/linux-float/uuvsim && \
+     sh tests/host/test_leap.sh $portable/linux-float/uuvsim"
+for v in linux-fixed linux-float; do
+    serial "host $v batch lanes, portable form (BATCH_LANES_FLAGS=)" pass sh -c \
+        "$portable_make $portable/$v/test_batch_lanes && $portable/$v/test_batch_lanes"
+done
 serial "host fuzz corpus replay (ASan+UBSan)" pass make --no-print-directory BUILD="$BUILD" fuzz-replay
 serial "host 60 s desk simulation (ASan+UBSan)" pass make --no-print-directory BUILD="$BUILD" san-sim
 
