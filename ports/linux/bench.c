@@ -21,7 +21,7 @@
  * under a millisecond).
  *
  * The speed-up is the single-rate run's CPU time (best of two) over the
- * multi-rate run's (best of three), both in this one program: the same
+ * multi-rate run's (best of five), both in this one program: the same
  * compiler, flags and square roots (uuv_config.h's UUV_HW_SQRT_*, printed
  * with the figure); for the exact fast path (the firmware's bits) and, in
  * the float build, for the exact leaps (leap.h), whose figure the target
@@ -633,12 +633,13 @@ int main(int argc, char **argv) {
         return 1;
     }
     /* The multi-rate run on the exact path and, where the build has them, with the exact
-     * leaps (leap.h): best of three each, interleaved; mr keeps an exact run's records. */
+     * leaps (leap.h): best of five each (a leap run takes some 6 ms), interleaved; mr keeps
+     * an exact run's records. */
     static run_data lp;
     const bool have_leap = leap_available();
     double mr_cpu = 1e300;
     double lp_cpu = 1e300;
-    for (int k = 0; k < (have_leap ? 6 : 3); k++) {
+    for (int k = 0; k < (have_leap ? 10 : 5); k++) {
         run_leaps = have_leap && (k % 2 == 1);
         run_data *r = run_leaps ? &lp : &mr;
         double *best = run_leaps ? &lp_cpu : &mr_cpu;
@@ -682,11 +683,11 @@ int main(int argc, char **argv) {
     fprintf(stderr, "  cost per step: fast %.1f ns (%.1f ns in runs), motor %.1f ns, "
                     "controller %.1f ns, slow %.0f ns\n",
             ns[0], ns[4], ns[1], ns[2], ns[3]);
-    fprintf(stderr, "  single-rate %.2f s, multi-rate %.4f s (CPU, best of 3): speed-up %.0fx "
+    fprintf(stderr, "  single-rate %.2f s, multi-rate %.4f s (CPU, best of 5): speed-up %.0fx "
                     "(exact path; both runs this program's, square roots %s)\n",
             ref.cpu_s, mr.cpu_s, speedup, sqrt_kind);
     if (have_leap) {
-        fprintf(stderr, "  with the exact leaps %.4f s (best of 3): speed-up %.0fx; errors vs "
+        fprintf(stderr, "  with the exact leaps %.4f s (best of 5): speed-up %.0fx; errors vs "
                         "single-rate: shaft %.3f %%, surge %.3f %% (exact path %.3f %%, %.3f %%)\n",
                 lp_cpu, speedup_leap, le.shaft, le.surge, e.shaft, e.surge);
     }
