@@ -95,11 +95,11 @@ $$($(1)_DIR)/obj/ports/linux/batch_lanes.o: XFLAGS := $(BATCH_LANES_FLAGS) $$(if
 $$($(1)_DIR)/obj/ports/linux/leap.o: XFLAGS := $(LEAP_ARCH)
 
 # The variant's compiler flags and the lists of files that take the fast and
-# the size flags, rewritten only when they change: every
+# the size flags (and the desk's vector flags), rewritten only when they change: every
 # object depends on them, so that a changed HOST_OPT rebuilds the variant.
 $$($(1)_DIR)/cflags: FORCE
 	@mkdir -p $$(@D)
-	@printf '%s\n' '$$(subst ','\'',$(2) $$($(1)_CFLAGS) $(DESK_RUN_GCC_FLAGS) $(BATCH_LANES_FLAGS))' > $$@.tmp
+	@printf '%s\n' '$$(subst ','\'',$(2) $$($(1)_CFLAGS) $(DESK_RUN_GCC_FLAGS) $(BATCH_LANES_FLAGS) $(LEAP_ARCH))' > $$@.tmp
 	@cmp -s $$@.tmp $$@ || mv $$@.tmp $$@
 	@rm -f $$@.tmp
 
@@ -134,6 +134,11 @@ $$($(1)_DIR)/test_batch_lanes: $$($(1)_SRC_O) $$($(1)_DIR)/obj/ports/linux/batch
         $$($(1)_DIR)/obj/tests/host/test_batch_lanes.o
 	$(2) $(5) -o $$@ $$^ -lm
 
+# The leaps' two AVX forms against each other (tests/host/test_leap_forms.c).
+$$($(1)_DIR)/test_leap_forms: $$($(1)_SRC_O) $$($(1)_DIR)/obj/ports/linux/leap.o \
+        $$($(1)_DIR)/obj/tests/host/test_leap_forms.o
+	$(2) $(5) -o $$@ $$^ -lm
+
 -include $$(wildcard $$($(1)_DIR)/obj/*/*.d $$($(1)_DIR)/obj/*/*/*.d $$($(1)_DIR)/obj/*/*/*/*.d $$($(1)_DIR)/obj/*/*/*/*/*.d $$($(1)_DIR)/obj/*/*/*/*/*/*.d)
 HOST_VARIANTS += $(1)
 endef
@@ -164,10 +169,13 @@ DESK_RUN_GCC_FLAGS := -fno-tree-pre
 # file's own functions.)
 BATCH_LANES_FLAGS ?= -march=native
 # The desk's exact leaps (ports/linux/leap.c, --fast-path leap): their maps
-# in the build host's AVX2 and FMA when it has them (an x86-64 without them,
-# AArch64: the compiler's baseline vectors). Any width gives correct leaps;
-# a build's results do not vary from run to run. LEAP_ARCH= builds the baseline.
-LEAP_ARCH ?= $(shell grep -qw avx2 /proc/cpuinfo 2>/dev/null && grep -qw fma /proc/cpuinfo && echo -mavx2 -mfma)
+# in the build host's AVX2 and FMA when it has them, and in 512-bit vectors
+# where it has AVX-512 too (the same bits as AVX2's: test_leap_forms); an
+# x86-64 without them, AArch64: the compiler's baseline vectors. Any width
+# gives correct leaps; a build's results do not vary from run to run.
+# LEAP_ARCH= builds the baseline.
+LEAP_ARCH ?= $(shell grep -qw avx2 /proc/cpuinfo 2>/dev/null && grep -qw fma /proc/cpuinfo && \
+    echo -mavx2 -mfma $$(grep -qw avx512f /proc/cpuinfo && echo -mavx512f))
 SAN_FLAGS := -O1 -g -fsanitize=address,undefined -fno-sanitize-recover=all -fno-omit-frame-pointer
 
 $(eval $(call host_variant,linux-fixed,$(CC),fixed,$(HOST_OPT),))
@@ -266,7 +274,7 @@ $(1)-$(2)_FAIL_O := $$(filter-out %/test_harness.o,$$($(1)-$(2)_TEST_O)) \
     $$($(1)-$(2)_DIR)/obj-mustfail/test_harness.o
 
 # The variant's compiler flags and the lists of files that take the fast and
-# the size flags, rewritten only when they change: every
+# the size flags (and the desk's vector flags), rewritten only when they change: every
 # object depends on them, so that a flag given on the command line
 # (FW_FAST_KERNEL=0, FW_SCENARIO_EVENTS=...) rebuilds what it changes.
 $$($(1)-$(2)_DIR)/cflags: FORCE
@@ -436,7 +444,8 @@ all: $(foreach v,linux-fixed linux-float,$(BUILD)/$(v)/uuvsim)
 
 host-all: $(foreach v,$(HOST_VARIANTS),$(BUILD)/$(v)/unit_tests $(BUILD)/$(v)/uuvsim) \
           $(BUILD)/linux-fixed/unit_tests_mustfail \
-          $(foreach v,linux-fixed linux-float,$(BUILD)/$(v)/property $(BUILD)/$(v)/test_batch_lanes)
+          $(foreach v,linux-fixed linux-float,$(BUILD)/$(v)/property $(BUILD)/$(v)/test_batch_lanes) \
+          $(BUILD)/linux-float/test_leap_forms
 
 firmware: $(FW_IMAGES) $(FW_SIMS) $(BUILD)/cortexm-mps2-an385-fixed/unit_tests_mustfail.elf
 

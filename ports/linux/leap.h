@@ -98,4 +98,13 @@ void leap_detach(exec *e);
 /* The run's counts so far (zeros when e has no leaps). */
 leap_stats leap_stats_of(const exec *e);
 
+/*
+ * The leap's product and bound in the build's two forms, 512-bit and
+ * 256-bit (a float build with AVX-512 has both; the first takes the
+ * leaps), on n entries and states of a fixed test sequence: the count of
+ * those whose product (its bits) or verdict differ, and in *accepted the
+ * verdicts that allowed the leap. -1 where the build has one form only.
+ */
+long leap_forms_check(uint32_t n, uint32_t *accepted);
+
 #endif /* UUV_LEAP_H */
