@@ -22,19 +22,9 @@
 
 #include "batch_lanes.h"
 #include "executive.h"
+#include "host_check.h"
 
 #define MAX_DRIVES 40
-
-static int passed, failed;
-
-static void check(bool ok, const char *what) {
-    printf("  %s  %s\n", ok ? "ok  " : "FAIL", what);
-    if (ok) {
-        passed++;
-    } else {
-        failed++;
-    }
-}
 
 static scenario scn;
 static exec ex[MAX_DRIVES];
@@ -136,6 +126,5 @@ int main(void) {
     printf("uuvsim batch's lane step against drive_fast_run(), %s build\n", UUV_NUMERIC_NAME);
     modulator_case(DRIVE_MODULATOR_SUBSTEP);
     modulator_case(DRIVE_MODULATOR_SAMPLED);
-    printf("%d passed, %d failed\n", passed, failed);
-    return failed == 0 ? 0 : 1;
+    return check_finish();
 }

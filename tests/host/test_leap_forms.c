@@ -11,20 +11,10 @@
  */
 #include <stdio.h>
 
+#include "host_check.h"
 #include "leap.h"
 
 #define N_ENTRIES 200000u
-
-static int passed, failed;
-
-static void check(bool ok, const char *what) {
-    printf("  %s  %s\n", ok ? "ok  " : "FAIL", what);
-    if (ok) {
-        passed++;
-    } else {
-        failed++;
-    }
-}
 
 int main(void) {
     uint32_t accepted = 0u;
@@ -41,6 +31,5 @@ int main(void) {
                  N_ENTRIES);
         check(accepted > N_ENTRIES / 10u && accepted < N_ENTRIES - N_ENTRIES / 10u, what);
     }
-    printf("%d passed, %d failed\n", passed, failed);
-    return (failed == 0) ? 0 : 1;
+    return check_finish();
 }
