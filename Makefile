@@ -94,9 +94,10 @@ $$($(1)_DIR)/obj/src/drive_fast_run.o: XFLAGS := -ffreestanding $$(if $$(findstr
 $$($(1)_DIR)/obj/ports/linux/batch_lanes.o: XFLAGS := $(BATCH_LANES_FLAGS) $$(if $$(findstring gcc,$(2)),-Wno-psabi)
 $$($(1)_DIR)/obj/ports/linux/leap.o: XFLAGS := $(LEAP_ARCH)
 
-# The variant's compiler flags and the lists of files that take the fast and
-# the size flags (and the desk's vector flags), rewritten only when they change: every
-# object depends on them, so that a changed HOST_OPT rebuilds the variant.
+# The variant's compiler flags (the desk's vector flags among them) and the
+# lists of files that take the fast and the size flags, rewritten only when
+# they change: every object depends on them, so that a changed HOST_OPT or
+# LEAP_ARCH rebuilds the variant.
 $$($(1)_DIR)/cflags: FORCE
 	@mkdir -p $$(@D)
 	@printf '%s\n' '$$(subst ','\'',$(2) $$($(1)_CFLAGS) $(DESK_RUN_GCC_FLAGS) $(BATCH_LANES_FLAGS) $(LEAP_ARCH))' > $$@.tmp
@@ -274,7 +275,7 @@ $(1)-$(2)_FAIL_O := $$(filter-out %/test_harness.o,$$($(1)-$(2)_TEST_O)) \
     $$($(1)-$(2)_DIR)/obj-mustfail/test_harness.o
 
 # The variant's compiler flags and the lists of files that take the fast and
-# the size flags (and the desk's vector flags), rewritten only when they change: every
+# the size flags, rewritten only when they change: every
 # object depends on them, so that a flag given on the command line
 # (FW_FAST_KERNEL=0, FW_SCENARIO_EVENTS=...) rebuilds what it changes.
 $$($(1)-$(2)_DIR)/cflags: FORCE

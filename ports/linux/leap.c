@@ -66,6 +66,7 @@ enum {
 #endif
 #else
 #define LEAP_AVX2 0
+#define LEAP_AVX512 0
 #endif
 
 /*
@@ -425,8 +426,6 @@ static inline bool bound_in(const double *z, const double *y, const __m256d bnd[
  * z: 16 values, the last two zero.
  */
 static bool product_bounded_256(const leap_entry *en, const double *z, double *y) {
-    /* Two sets of sums (even and odd columns), so that each chain of products is half as
-     * long: the leap's latency, which the next step waits for. */
     /* A block at a time: the empty asm keeps the compiler from holding one block's
      * broadcasts of z for the next (more registers than x86-64 has). */
     block8(en->m[0], z, false, y);
