@@ -114,6 +114,20 @@ static void key_of(const drive_segment *d, float key[NK]) {
     key[K_L] = d->k_l;
 }
 
+/* The legs' duties of switch state s: each leg's 0 or 1 (bit x: leg x high). */
+static void dq_of(unsigned s, double dq[3]) {
+    for (unsigned x = 0u; x < 3u; x++) {
+        dq[x] = (double)((s >> x) & 1u);
+    }
+}
+
+/* The inverter voltages u_a, u_b of DC link v_dc and the legs' duties dq (ps_inverter_f32()). */
+static inline void u_of(double v_dc, const double dq[3], double u[2]) {
+    const double v3 = v_dc * (double)(1.0f / 3.0f);
+    u[0] = v3 * (2.0 * dq[0] - dq[1] - dq[2]);
+    u[1] = v3 * (2.0 * dq[1] - dq[0] - dq[2]);
+}
+
 /*
  * One ordinary step of the real-time path in double, on z (linear in z:
  * the inputs are entries of z), in the exact path's operations
@@ -126,15 +140,12 @@ static inline void step_d(const double kd[NK], const double dq[3], const double 
                           double out[NZ], double outs[3]) __attribute__((always_inline));
 static inline void step_d(const double kd[NK], const double dq[3], const double z[NZ],
                           double out[NZ], double outs[3]) {
-    const double sa = dq[0];
-    const double sb = dq[1];
-    const double sc = dq[2];
-    const double w[2] = {2.0 * sa - sb - sc, 2.0 * sb - sa - sc};
-    const double dd[2] = {sa - sc, sb - sc};
-    const double v3 = z[Z_VDC] * (double)(1.0f / 3.0f);
+    const double dd[2] = {dq[0] - dq[2], dq[1] - dq[2]};
+    double uv[2];
+    u_of(z[Z_VDC], dq, uv);
     double t = 0.0;
     for (int x = 0; x < 2; x++) {
-        const double u = v3 * w[x];
+        const double u = uv[x];
         const double i0 = z[z_il[x]];
         const double vc = z[z_vc[x]];
         const double id = z[z_id[x]];
@@ -163,7 +174,8 @@ static inline void step_d(const double kd[NK], const double dq[3], const double 
 
 /* The one-step map of state s, from the step on the unit vectors. */
 static void build_step(leap_tables *L, unsigned s) {
-    const double dq[3] = {(double)(s & 1u), (double)((s >> 1) & 1u), (double)((s >> 2) & 1u)};
+    double dq[3];
+    dq_of(s, dq);
     for (int c = 0; c < NZ; c++) {
         double z[NZ] = {0.0};
         z[c] = 1.0;
@@ -498,8 +510,10 @@ static bool product_bounded_512(const leap_entry *en, const double *z, double *y
     }
     _mm512_store_pd(y, sum4_512(lo));
     _mm512_store_pd(y + 8, sum4_512(hi));
-    /* The largest |z| of each kind (z's 16 places: two vectors; a voltage's mask bit set). */
-    const __mmask8 volt[2] = {0x52u, 0x38u};
+    /* The largest |z| of each kind (z's 16 places: two vectors; volt_mask's voltages). */
+    const __m512i vm0 = _mm512_load_si512((const void *)volt_mask);
+    const __m512i vm1 = _mm512_load_si512((const void *)(volt_mask + 8));
+    const __mmask8 volt[2] = {_mm512_test_epi64_mask(vm0, vm0), _mm512_test_epi64_mask(vm1, vm1)};
     const __m512d a0 = _mm512_abs_pd(_mm512_load_pd(z));
     const __m512d a1 = _mm512_abs_pd(_mm512_load_pd(z + 8));
     const __m512d zero = _mm512_setzero_pd();
@@ -659,12 +673,12 @@ static void run_store(const run_z *r, drive_segment *d) {
         ps->u[1] = (float)r->u[1];
     } else {
         /* A leap's last step: its inverter voltages as the step forms them from its v_dc. */
-        const double v3 = r->v_dc * (double)(1.0f / 3.0f);
-        const double sa = (double)(r->s & 1u);
-        const double sb = (double)((r->s >> 1) & 1u);
-        const double sc = (double)((r->s >> 2) & 1u);
-        ps->u[0] = (float)(v3 * (2.0 * sa - sb - sc));
-        ps->u[1] = (float)(v3 * (2.0 * sb - sa - sc));
+        double dq[3];
+        double u[2];
+        dq_of(r->s, dq);
+        u_of(r->v_dc, dq, u);
+        ps->u[0] = (float)u[0];
+        ps->u[1] = (float)u[1];
     }
     ps->v_dc = (float)r->z[Z_VDC];
     d->sums.v_dc += (float)r->sum[2];
