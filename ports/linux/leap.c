@@ -121,11 +121,25 @@ static void dq_of(unsigned s, double dq[3]) {
     }
 }
 
+/*
+ * The two filter phases side by side: lane 0 phase a, lane 1 phase b. The
+ * compiler's vector extension (SSE2 on x86-64, NEON on AArch64), with the
+ * IEEE operations of the scalar code lane by lane (no contraction:
+ * -ffp-contract=off), so each lane has the bits the phase's scalar
+ * arithmetic would give.
+ */
+typedef double v2d __attribute__((vector_size(16)));
+
+static inline v2d v2(double a, double b) {
+    const v2d v = {a, b};
+    return v;
+}
+
 /* The inverter voltages u_a, u_b of DC link v_dc and the legs' duties dq (ps_inverter_f32()). */
-static inline void u_of(double v_dc, const double dq[3], double u[2]) {
+static inline v2d u_of(double v_dc, const double dq[3]) {
     const double v3 = v_dc * (double)(1.0f / 3.0f);
-    u[0] = v3 * (2.0 * dq[0] - dq[1] - dq[2]);
-    u[1] = v3 * (2.0 * dq[1] - dq[0] - dq[2]);
+    const v2d dq2 = v2(dq[2], dq[2]);
+    return v2(v3, v3) * (((v2(2.0, 2.0) * v2(dq[0], dq[1])) - v2(dq[1], dq[0])) - dq2);
 }
 
 /*
@@ -140,30 +154,32 @@ static inline void step_d(const double kd[NK], const double dq[3], const double 
                           double out[NZ], double outs[3]) __attribute__((always_inline));
 static inline void step_d(const double kd[NK], const double dq[3], const double z[NZ],
                           double out[NZ], double outs[3]) {
-    const double dd[2] = {dq[0] - dq[2], dq[1] - dq[2]};
-    double uv[2];
-    u_of(z[Z_VDC], dq, uv);
-    double t = 0.0;
+#define KV(i) v2(kd[i], kd[i])
+    const v2d dd = v2(dq[0], dq[1]) - v2(dq[2], dq[2]);
+    const v2d u = u_of(z[Z_VDC], dq);
+    const v2d i0 = v2(z[z_il[0]], z[z_il[1]]);
+    const v2d vc = v2(z[z_vc[0]], z[z_vc[1]]);
+    const v2d id = v2(z[z_id[0]], z[z_id[1]]);
+    const v2d jsh = v2(z[z_jsh[0]], z[z_jsh[1]]);
+    const v2d im = v2(z[Z_IF_A], z[Z_IF_B]);
+    const v2d jl = (i0 + KV(K_NEG_EPS_L) * i0) + KV(K_G_L2) * (u - vc);
+    const v2d dv = KV(K_NODE) * ((jl + jsh) - im);
+    const v2d il = jl + KV(K_NEG_G_L) * dv;
+    const v2d idn = (id + KV(K_NEG_A_D) * id) + KV(K_G_D) * dv;
+    const v2d vcn = vc + dv;
+    const v2d jshn = ((il - im) - v2(2.0, 2.0) * idn) + KV(K_A_D) * idn;
+    const v2d imn = im + (vcn - v2(z[Z_E_A], z[Z_E_B])) * KV(K_L);
+    const v2d ti = dd * (i0 + il);
+#undef KV
     for (int x = 0; x < 2; x++) {
-        const double u = uv[x];
-        const double i0 = z[z_il[x]];
-        const double vc = z[z_vc[x]];
-        const double id = z[z_id[x]];
-        const double jsh = z[z_jsh[x]];
-        const double im = z[Z_IF_A + x];
-        const double jl = (i0 + kd[K_NEG_EPS_L] * i0) + kd[K_G_L2] * (u - vc);
-        const double dv = kd[K_NODE] * ((jl + jsh) - im);
-        const double il = jl + kd[K_NEG_G_L] * dv;
-        const double idn = (id + kd[K_NEG_A_D] * id) + kd[K_G_D] * dv;
-        const double vcn = vc + dv;
-        out[z_il[x]] = il;
-        out[z_vc[x]] = vcn;
-        out[z_id[x]] = idn;
-        out[z_jsh[x]] = ((il - im) - 2.0 * idn) + kd[K_A_D] * idn;
-        out[Z_IF_A + x] = im + (vcn - z[Z_E_A + x]) * kd[K_L];
-        t += dd[x] * (i0 + il);
-        outs[x] = u;
+        out[z_il[x]] = il[x];
+        out[z_vc[x]] = vcn[x];
+        out[z_id[x]] = idn[x];
+        out[z_jsh[x]] = jshn[x];
+        out[Z_IF_A + x] = imn[x];
+        outs[x] = u[x];
     }
+    const double t = (0.0 + ti[0]) + ti[1]; /* the phases' sum as the scalar loop forms it */
     const double i_dc = 0.5 * t;
     out[Z_VDC] = z[Z_VDC] + (kd[K_KG] * (z[Z_EV] - z[Z_VDC]) + kd[K_NEG_K_C] * t); /* of the sum t */
     out[Z_E_A] = z[Z_E_A];
@@ -289,19 +305,20 @@ static void tables_check(leap_tables *L, const drive_segment *d) {
 #define SCAN_MAX 63u /* steps scanned for edges at a time (their 64 grid points: one word) */
 
 /*
- * The leg signs at grid points 0..n from now (n <= SCAN_MAX), as the exact
- * path forms them (pwm_rt_ends()): bit j of leg[x] is e_x > 0 at point j,
- * e_x = r_x - c the leg's comparison; a step j has an edge when bit j and
+ * The leg signs at grid points k..k + n of the frame in force (n <=
+ * SCAN_MAX), as the exact path forms them (pwm_rt_ends()): bit j of leg[x] is e_x > 0 at point j,
+ * at point k + j, e_x = r_x - c the leg's comparison; a step j has an edge when bit j and
  * bit j + 1 of some leg differ. Integer only: in AVX2 eight points at a
  * time where the build has it (the same integers), else a plain loop.
  */
-static void scan_signs(const pwm_rt *p, uint32_t n, uint64_t leg[3]) {
-    const uint32_t ph0 = pwm_rt_phase(p);
+static void scan_signs(const pwm_rt *p, uint32_t k, uint32_t n, uint64_t leg[3]) {
+    const pwm_rt_frame *f = &p->fr[pwm_rt_cur(p)];
     const uint32_t inc = p->inc_c;
-    const uint32_t r0a = (uint32_t)pwm_rt_ref_now(p, 0);
-    const uint32_t r0b = (uint32_t)pwm_rt_ref_now(p, 1);
-    const uint32_t dra = (uint32_t)pwm_rt_slope(p, 0);
-    const uint32_t drb = (uint32_t)pwm_rt_slope(p, 1);
+    const uint32_t ph0 = f->ph0 + k * inc;
+    const uint32_t r0a = (uint32_t)pwm_rt_ref(f, 0, k);
+    const uint32_t r0b = (uint32_t)pwm_rt_ref(f, 1, k);
+    const uint32_t dra = (uint32_t)f->dr[0];
+    const uint32_t drb = (uint32_t)f->dr[1];
     uint64_t m[3] = {0u, 0u, 0u};
 #if LEAP_AVX2
     /* The carrier's fold as integers: for ph >= 2^31 (s = -1), 2^25 - x = (x ^ s) - s + 2^25. */
@@ -629,6 +646,8 @@ typedef struct {
     double v_dc;    /* ... or its DC link at its start, for them (a leap: u_valid false) */
     double i_dc;    /* its DC-link current */
     unsigned s;     /* the legs' states at the last step's end */
+    uint32_t taken; /* steps taken since the load: the modulator is moved past them at the
+                     * store, and a step's comparisons are at its count plus them */
     bool u_valid;   /* u holds the last step's voltages (else they come from v_dc and s) */
     bool stepped;   /* a step was taken since the load (u or v_dc, i_dc, s hold) */
 } run_z;
@@ -650,14 +669,19 @@ static void run_load(run_z *r, const drive_segment *d) {
     r->sum[0] = 0.0;
     r->sum[1] = 0.0;
     r->sum[2] = 0.0;
+    r->taken = 0u;
     r->stepped = false;
 }
 
-/* The drive's state from the run's: its float states, the frame sums, the last step's outputs. */
+/*
+ * The drive's state from the run's: its float states, the frame sums, the
+ * last step's outputs; the modulator moved past the steps taken.
+ */
 static void run_store(const run_z *r, drive_segment *d) {
     if (!r->stepped) {
         return;
     }
+    pwm_rt_skip_substep(&d->rt, r->taken); /* unplanned (leap_attach()) */
     power_stage_f32 *ps = &d->ps;
     for (int x = 0; x < 2; x++) {
         ps_phase_f32 *ph = &ps->ph[x];
@@ -674,9 +698,8 @@ static void run_store(const run_z *r, drive_segment *d) {
     } else {
         /* A leap's last step: its inverter voltages as the step forms them from its v_dc. */
         double dq[3];
-        double u[2];
         dq_of(r->s, dq);
-        u_of(r->v_dc, dq, u);
+        const v2d u = u_of(r->v_dc, dq);
         ps->u[0] = (float)u[0];
         ps->u[1] = (float)u[1];
     }
@@ -692,9 +715,8 @@ static void run_store(const run_z *r, drive_segment *d) {
  * k steps of switch state s as one map on the run's state, if the bound
  * allows (leap.h): returns false, the run unchanged, otherwise.
  */
-static bool leap_take(leap_tables *L, drive_segment *d, run_z *r, unsigned s, uint32_t k)
-    __attribute__((noinline));
-static bool leap_take(leap_tables *L, drive_segment *d, run_z *r, unsigned s, uint32_t k) {
+static bool leap_take(leap_tables *L, run_z *r, unsigned s, uint32_t k) __attribute__((noinline));
+static bool leap_take(leap_tables *L, run_z *r, unsigned s, uint32_t k) {
     if (L->built[s] < k) {
         build_to(L, s, k);
     }
@@ -730,31 +752,42 @@ static bool leap_take(leap_tables *L, drive_segment *d, run_z *r, unsigned s, ui
     r->i_dc = y[R_IDC_LAST];
     r->s = s;
     r->u_valid = false;
+    r->taken += k;
     r->stepped = true;
-    pwm_rt_skip_substep(&d->rt, k); /* unplanned (leap_attach()) */
     L->st.leaps++;
     L->st.leap_steps += k;
     return true;
 }
 
 /*
- * One step on the run's state in double (step_d()) with the duties and
- * states the modulator gives it (pwm_rt_substep_each()'s, by the same
- * comparisons and pwm_rt_duty()), if no clamped component comes near its
- * limit (the bound's limits, bound_lim): returns false, the run and the
- * modulator unchanged, otherwise.
+ * One step on the run's state in double (step_d()), from the legs' states
+ * sa at its start to sb at its end (scan_signs()'s signs), if no clamped
+ * component comes near its limit (the bound's limits, bound_lim): returns
+ * false, the run and the modulator unchanged, otherwise. The duties are
+ * the modulator's (pwm_rt_substep_each()'s, by pwm_rt_duty()): a leg whose
+ * sign does not change holds it over the step (duty 0 or 1), a leg whose
+ * sign changes has pwm_rt_edge_duty() of the step's ends (pwm_rt_e_at() at
+ * the step's count and the next, which are pwm_rt_ends()'s).
  */
-static bool step_take(leap_tables *L, drive_segment *d, run_z *r) {
-    pwm_rt *p = &d->rt;
-    int32_t e0[3];
-    int32_t e1[3];
-    pwm_rt_ends(p, e0, e1);
+static bool step_take(leap_tables *L, drive_segment *d, run_z *r, unsigned sa, unsigned sb) {
+    const pwm_rt *p = &d->rt;
+    const unsigned edge = sa ^ sb;
     double dq[3];
-    unsigned s = 0u;
-    for (unsigned x = 0u; x < 3u; x++) {
-        /* The duty as the stage takes it (ps_fast_legs_f32(): a float share of the step). */
-        dq[x] = (double)((float)pwm_rt_duty(e0[x], e1[x], p->den_sh) * (1.0f / 32768.0f));
-        s |= (unsigned)pwm_rt_neg(-e1[x]) << x;
+    dq_of(sa, dq);
+    if (edge != 0u) {
+        const pwm_rt_frame *f = &p->fr[pwm_rt_cur(p)];
+        const uint32_t k = pwm_rt_k(p) + r->taken;
+        int32_t e0[3];
+        int32_t e1[3];
+        pwm_rt_e_at(f, p->inc_c, k, e0);
+        pwm_rt_e_at(f, p->inc_c, k + 1u, e1);
+        for (unsigned x = 0u; x < 3u; x++) {
+            if (((edge >> x) & 1u) != 0u) {
+                /* The duty as the stage takes it (ps_fast_legs_f32(): a float share of the step). */
+                dq[x] = (double)((float)pwm_rt_edge_duty(e0[x], e1[x], p->den_sh) *
+                                 (1.0f / 32768.0f));
+            }
+        }
     }
     double out[16] __attribute__((aligned(64)));
     double outs[3];
@@ -784,10 +817,10 @@ static bool step_take(leap_tables *L, drive_segment *d, run_z *r) {
     r->u[0] = outs[0];
     r->u[1] = outs[1];
     r->i_dc = outs[2];
-    r->s = s;
+    r->s = sb;
     r->u_valid = true;
+    r->taken++;
     r->stepped = true;
-    pwm_rt_skip_substep(p, 1u);
     L->st.dsteps++;
     return true;
 }
@@ -808,9 +841,12 @@ static void ordinary(leap_tables *L, drive_segment *d, uint32_t n) {
     L->st.steps += n;
 }
 
-/* One step of the run: in double, or (near a clamp) an ordinary step on the drive's state. */
-static void step_one(leap_tables *L, drive_segment *d, run_z *r) {
-    if (!step_take(L, d, r)) {
+/*
+ * One step of the run from the legs' states sa to sb: in double, or (near a
+ * clamp) an ordinary step on the drive's state.
+ */
+static void step_one(leap_tables *L, drive_segment *d, run_z *r, unsigned sa, unsigned sb) {
+    if (!step_take(L, d, r, sa, sb)) {
         run_store(r, d);
         ordinary(L, d, 1u);
         run_load(r, d);
@@ -821,7 +857,7 @@ static void step_one(leap_tables *L, drive_segment *d, run_z *r) {
 static void stretch(leap_tables *L, drive_segment *d, run_z *r, unsigned s, uint32_t k) {
     while (k >= LEAP_K_MIN) {
         uint32_t m = (k < LEAP_K_MAX) ? k : LEAP_K_MAX;
-        while (m >= LEAP_K_MIN && !leap_take(L, d, r, s, m)) {
+        while (m >= LEAP_K_MIN && !leap_take(L, r, s, m)) {
             m /= 2u; /* the bound refused: a shorter leap */
         }
         if (m < LEAP_K_MIN) {
@@ -830,7 +866,7 @@ static void stretch(leap_tables *L, drive_segment *d, run_z *r, unsigned s, uint
         k -= m;
     }
     for (; k > 0u; k--) {
-        step_one(L, d, r);
+        step_one(L, d, r, s, s);
     }
 }
 
@@ -847,21 +883,24 @@ static void leap_run(void *ctx, drive_segment *d, uint32_t n) {
     while (done < n) {
         const uint32_t m = (n - done < SCAN_MAX) ? n - done : SCAN_MAX;
         uint64_t leg[3];
-        scan_signs(&d->rt, m, leg);
+        scan_signs(&d->rt, pwm_rt_k(&d->rt) + r.taken, m, leg);
         /* Bit j: step j (j < m) has an edge. */
         const uint64_t edges = ((leg[0] ^ (leg[0] >> 1)) | (leg[1] ^ (leg[1] >> 1)) |
                                 (leg[2] ^ (leg[2] >> 1))) &
                                (((uint64_t)1 << m) - 1u);
         uint32_t j = 0u;
+        unsigned s = signs_at(leg, 0u); /* the legs' states at point j */
         while (j < m) {
             const uint64_t ahead = edges >> j;
             uint32_t i = (ahead != 0u) ? j + (uint32_t)__builtin_ctzll(ahead) : m;
-            /* Steps j..i-1 hold the legs' states; step i (if i < m) has an edge. */
+            /* Steps j..i-1 hold the legs' states s; step i (if i < m) has an edge. */
             if (i > j) {
-                stretch(L, d, &r, signs_at(leg, j), i - j);
+                stretch(L, d, &r, s, i - j);
             }
             if (i < m) {
-                step_one(L, d, &r);
+                const unsigned sb = signs_at(leg, i + 1u);
+                step_one(L, d, &r, s, sb);
+                s = sb;
                 i++;
             }
             j = i;
