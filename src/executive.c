@@ -687,30 +687,44 @@ uint32_t exec_desk_finish(exec *e, uint32_t stepped, uint32_t max_ticks) {
     return n;
 }
 
-/*
- * A whole split motor frame with a port's runner, its boundary's second
- * half done: the release's work (the motor task, the controller, a slow
- * step) first, then the frame's steps as one run, then the boundary's first
- * half. The same results as the release EXEC_SPLIT_RELEASE_AT steps into
- * the frame: nothing those tasks write reaches the fast steps before the
- * next boundary (drive_segment.h), and none of them reads the steps. If
- * the release's slow step ends the run, the frame's steps stop where they
- * stop in exec_desk_step()'s order, at the release.
- */
 /* The event's tick's work after its step, if the run ended at the event, and a slow step. */
 static void desk_event_after(exec *e) {
     desk_after_tick(e, (e->fast_phase == e->fast_event_at) && fast_event(e));
 }
 
-static uint32_t desk_frame_hooked(exec *e) {
+/*
+ * A whole split motor frame (executive.h: exec_desk_frame_begin()), its
+ * boundary's second half done: the release's work (the motor task, the
+ * controller, a slow step) first, then the frame's steps as one run, then
+ * the boundary's first half. The same results as the release
+ * EXEC_SPLIT_RELEASE_AT steps into the frame: nothing those tasks write
+ * reaches the fast steps before the next boundary (drive_segment.h), and
+ * none of them reads the steps. If the release's slow step ends the run,
+ * the frame's steps stop where they stop in exec_desk_step()'s order, at
+ * the release.
+ */
+
+bool exec_desk_frame_whole(const exec *e, bool begin, uint32_t max_ticks) {
+    return begin && e->split && (e->fast_phase == 0u) && (max_ticks >= e->cfg.fast_per_medium);
+}
+
+uint32_t exec_desk_frame_begin(exec *e) {
     const uint32_t rel = e->fast_event_at;
     e->fast_phase = rel;
     desk_event_after(e);
     e->fast_phase = 0u;
-    const uint32_t n = exec_fast_ended(e) ? rel : e->cfg.fast_per_medium;
-    e->desk_run(e->desk_ctx, &e->drive, n);
+    return exec_fast_ended(e) ? rel : e->cfg.fast_per_medium;
+}
+
+void exec_desk_frame_end(exec *e, uint32_t n) {
     e->fast_phase = n;
     desk_event_after(e);
+}
+
+static uint32_t desk_frame_hooked(exec *e) {
+    const uint32_t n = exec_desk_frame_begin(e);
+    e->desk_run(e->desk_ctx, &e->drive, n);
+    exec_desk_frame_end(e, n);
     return n;
 }
 
@@ -727,7 +741,7 @@ static uint32_t desk_run_hooked(exec *e, uint32_t max_ticks) {
     const bool begin = (e->fast_gate == EXEC_GATE_BEGIN);
     uint32_t n = 0u;
     if ((max_ticks != 0u) && !e->slow_pending && exec_desk_tick_begin(e)) {
-        if (begin && e->split && (e->fast_phase == 0u) && (max_ticks >= e->cfg.fast_per_medium)) {
+        if (exec_desk_frame_whole(e, begin, max_ticks)) {
             n = desk_frame_hooked(e);
         } else {
             const uint32_t ahead = e->fast_event_at - e->fast_phase;

@@ -353,6 +353,21 @@ bool exec_desk_tick_begin(exec *e);
 void exec_desk_tick_end(exec *e);
 
 /*
+ * A whole split motor frame as one run of its steps, for the same ports
+ * and for a desk_run (the leaps): where exec_desk_tick_begin() has just
+ * begun the frame's first tick (begin: the gate was EXEC_GATE_BEGIN
+ * before it, the boundary's second half) and the frame fits in max_ticks
+ * (exec_desk_frame_whole()),
+ *   n = exec_desk_frame_begin(e);   the release's work, ahead of the steps
+ *   drive_fast_run(&e->drive, n);   or the same steps computed elsewhere
+ *   exec_desk_frame_end(e, n);      the boundary's first half, its tasks
+ * gives the results of the frame's exec_desk_step()s (executive.c).
+ */
+bool exec_desk_frame_whole(const exec *e, bool begin, uint32_t max_ticks);
+uint32_t exec_desk_frame_begin(exec *e);
+void exec_desk_frame_end(exec *e, uint32_t n);
+
+/*
  * A command given between slow steps, as a scenario event at the slow
  * boundary just reached would have been: a co-simulation master's input
  * at a communication point (ports/fmu). Call it after the boundary's slow

@@ -22,8 +22,9 @@
  *                  and the frame sum of v_dc (power_stage_fast.h and
  *                  power_stage_nodes.h's clamps and counts)
  * The sub-step modulator's edges (a leg whose comparison changes sign
- * within the step, a few legs in a hundred) take pwm_rt_edge_duty() itself,
- * lane by lane, after a test whether any lane has one.
+ * within the step, a few legs in a hundred) take pwm_rt_edge_duty() in
+ * lanes (lane_edge_duty(): its quotient in double, the same integer),
+ * after a test whether any lane has one.
  *
  * The fixed build's step is the same pieces in Q3.28 (lane_acc(),
  * lane_mac(), lane_hi(): power_stage_nodes.h's 64-bit sums modulo 2^64 and
@@ -54,12 +55,18 @@ void batch_lanes_attach(exec *e) {
  * latch; exec_desk_tick_begin()), the steps that only step (ahead: that
  * tick's own, when its count has no event, and those after it), the next
  * event tick's step (tick) and its event; the steps in lanes when the run
- * is on the real-time path, else all of it through exec_desk_run().
+ * is on the real-time path, else all of it through exec_desk_run(). At
+ * the first tick of a split motor frame that fits, the whole frame
+ * (exec_desk_frame_begin()): the release's work, the frame's steps, the
+ * boundary's first half, so that a frame is one run of steps in the
+ * lanes, not two (the two steps to the release and the rest).
  */
 typedef struct {
-    uint32_t ahead; /* exec_desk_ahead()'s steps, after the begin */
+    uint32_t ahead; /* exec_desk_ahead()'s steps, after the begin; a whole frame's steps */
     bool tick;      /* the event tick's step follows them (in the same lanes) */
     bool lane;      /* the steps go in lanes */
+    bool whole;     /* a whole frame in lanes (exec_desk_frame_end() after the steps) */
+    bool done;      /* a whole frame that left the real-time path, done on its own */
     bool taken;     /* already in a group this pass */
 } batch_plan;
 
@@ -71,11 +78,27 @@ void batch_step_all(exec *const *e, const uint32_t *most, size_t count) {
         exec *const *x = e + i0;
         for (size_t i = 0; i < m; i++) {
             batch_plan *p = &plan[i];
+            const bool begin = x[i]->fast_gate == EXEC_GATE_BEGIN;
             /* A latch may leave the real-time path (a fault, a trip): tested after it. */
             p->lane = x[i]->desk_run == NULL && batch_lane_ready(&x[i]->drive) &&
                       exec_desk_tick_begin(x[i]) && batch_lane_ready(&x[i]->drive);
-            p->ahead = p->lane ? exec_desk_ahead(x[i], most[i0 + i]) : 0u;
-            p->tick = p->lane && p->ahead < most[i0 + i];
+            p->whole = p->lane && exec_desk_frame_whole(x[i], begin, most[i0 + i]);
+            p->done = false;
+            if (p->whole) {
+                p->ahead = exec_desk_frame_begin(x[i]);
+                p->tick = false;
+                if (!batch_lane_ready(&x[i]->drive)) {
+                    /* The release's tasks left the real-time path: the frame's steps alone. */
+                    drive_fast_run(&x[i]->drive, p->ahead);
+                    exec_desk_frame_end(x[i], p->ahead);
+                    p->lane = false;
+                    p->whole = false;
+                    p->done = true;
+                }
+            } else {
+                p->ahead = p->lane ? exec_desk_ahead(x[i], most[i0 + i]) : 0u;
+                p->tick = p->lane && p->ahead < most[i0 + i];
+            }
             p->taken = false;
         }
         for (size_t i = 0; i < m; i++) {
@@ -97,6 +120,13 @@ void batch_step_all(exec *const *e, const uint32_t *most, size_t count) {
         }
         for (size_t i = 0; i < m; i++) {
             const batch_plan *p = &plan[i];
+            if (p->whole) {
+                exec_desk_frame_end(x[i], p->ahead);
+                continue;
+            }
+            if (p->done) {
+                continue;
+            }
             if (!p->lane) {
                 /* Its tick begun or not (then nothing was done), exec_desk_run() goes on from there. */
                 (void)exec_desk_run(x[i], most[i0 + i]);
@@ -285,6 +315,38 @@ static inline bool lane_any(vi m) {
     return o != 0u;
 }
 
+/* Doubles, one per lane: the edge duty's quotient. */
+typedef double vd __attribute__((vector_size(8 * BATCH_W)));
+
+/*
+ * pwm_rt_edge_duty(e0, e1, sh) in the lanes where the mask m is -1 (the
+ * others: any value). Its shifts as they are; its quotient floor(n / d),
+ * n = pos 2^15 < 2^31, d = den | 1 < 2^16, as the truncated double
+ * quotient, which is the same integer: the double division is correctly
+ * rounded, and n / d, below 2^31, is an integer or at least 1 / d >= 2^-16
+ * from the next one, while its rounding error is at most 2^-22. No
+ * integer division in the lanes; tests/host/test_batch_lanes.c compares
+ * the two on the edge cases and on a million random edges.
+ */
+static inline vi lane_edge_duty(vi m, vi e0, vi e1, vu sh) {
+    const vi p0 = (vi)(e0 > 0);
+    vu pos = (vu)sel_i(p0, e0, e1);
+    vu den = (vu)sel_i(p0, (vi)((vu)e0 - (vu)e1), (vi)((vu)e1 - (vu)e0));
+    pos >>= sh;
+    den = (vu)((vi)(den >> sh) & m);
+    for (vi big = (vi)(den > 0xffffu); lane_any(big); big = (vi)(den > 0xffffu)) {
+        pos = sel_u(big, pos >> 1, pos);
+        den = sel_u(big, den >> 1, den);
+    }
+    const vd q = __builtin_convertvector(pos << 15, vd) / __builtin_convertvector(den | 1u, vd);
+    return (vi)__builtin_convertvector(q, vu);
+}
+
+int32_t batch_lanes_edge_duty(int32_t e0, int32_t e1, uint32_t sh) {
+    const vi m = (vi){0} - 1;
+    return lane_edge_duty(m, (vi){0} + e0, (vi){0} + e1, (vu){0} + sh)[0];
+}
+
 /*
  * The modulator's step: pwm_rt_substep() or pwm_rt_sampled(), then the
  * advance. A sub-step leg without a sign change of its comparison over the
@@ -311,12 +373,10 @@ static inline void lane_duties(lanes *L, bool substep, vi duty[3]) {
             L->s[x] = lane_neg(-e1[x]);
         }
         if (lane_any(any)) {
-            for (unsigned l = 0u; l < BATCH_W; l++) {
-                for (int x = 0; x < 3; x++) {
-                    if (LANE(edge[x], l) != 0) {
-                        LANE(duty[x], l) =
-                            pwm_rt_edge_duty(LANE(e0[x], l), LANE(e1[x], l), LANE(L->den_sh, l));
-                    }
+            for (int x = 0; x < 3; x++) {
+                if (lane_any(edge[x])) {
+                    duty[x] = sel_i(edge[x], lane_edge_duty(edge[x], e0[x], e1[x], L->den_sh),
+                                    duty[x]);
                 }
             }
         }

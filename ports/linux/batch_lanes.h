@@ -68,4 +68,11 @@ void batch_fast_run(drive_segment *const *d, size_t count, uint32_t n, bool subs
  */
 void batch_step_all(exec *const *e, const uint32_t *most, size_t count);
 
+/*
+ * The lanes' form of pwm_rt_edge_duty() (its quotient as a truncated
+ * double quotient) on one set of its arguments, for the test that pins the
+ * two together (tests/host/test_batch_lanes.c).
+ */
+int32_t batch_lanes_edge_duty(int32_t e0, int32_t e1, uint32_t sh);
+
 #endif /* UUV_BATCH_LANES_H */

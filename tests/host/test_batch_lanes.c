@@ -14,7 +14,9 @@
  * drives must be equal byte for byte (the whole drive_segment, copied from
  * one state). A last case starts every drive with its DC link at the
  * clamp and its filter currents beyond theirs, so that the clamps and
- * their counts act in every lane. Prints each check and "N passed, N failed".
+ * their counts act in every lane. The lanes' edge duty against
+ * pwm_rt_edge_duty() on its extremes and a million random edges. Prints
+ * each check and "N passed, N failed".
  */
 #include <stdio.h>
 #include <stdlib.h>
@@ -23,6 +25,7 @@
 #include "batch_lanes.h"
 #include "executive.h"
 #include "host_check.h"
+#include "models/drive/pwm/pwm_rt.h"
 
 #define MAX_DRIVES 40
 
@@ -116,6 +119,55 @@ static void modulator_case(drive_modulator mod) {
     check(same && ex[0].drive.ps.sat_count > sat0, what);
 }
 
+/* xorshift64: a fixed sequence of test values. */
+static uint64_t next(uint64_t *x) {
+    *x ^= *x << 13;
+    *x ^= *x >> 7;
+    *x ^= *x << 17;
+    return *x;
+}
+
+/*
+ * The lanes' edge duty (its quotient in double) against pwm_rt_edge_duty()
+ * on the edges' extremes and a million random edges: a comparison that
+ * goes from e0 to e1 across zero (e0 > 0 >= e1 or e0 <= 0 < e1), |e| < 2^30,
+ * shifts 0..15.
+ */
+static void edge_duty_case(void) {
+    static const int32_t lim = (1 << 30) - 1;
+    const int32_t ends[][2] = {
+        {1, 0}, {0, 1}, {1, -1}, {-1, 1}, {lim, -lim}, {-lim, lim}, {lim, 0}, {0, lim},
+        {1, -lim}, {-lim, 1}, {0xffff, 0}, {0x10000, 0}, {0x8000, -0x8000}, {0x7fff, -0x8001},
+        {1, -0xfffe}, {1, -0xffff}, {3, -0x1fffd},
+    };
+    unsigned bad = 0u;
+    unsigned n = 0u;
+    for (size_t i = 0; i < sizeof ends / sizeof ends[0]; i++) {
+        for (uint32_t sh = 0u; sh < 16u; sh++) {
+            n++;
+            bad += (batch_lanes_edge_duty(ends[i][0], ends[i][1], sh) !=
+                    pwm_rt_edge_duty(ends[i][0], ends[i][1], sh)) ? 1u : 0u;
+        }
+    }
+    uint64_t x = 0x9E3779B97F4A7C15u;
+    for (unsigned i = 0u; i < 1000000u; i++) {
+        const uint64_t r = next(&x);
+        /* |e| below 2^30, but often small: a random size, then a value of that size. */
+        const int32_t up = (int32_t)((r & 0x3ffffffeu) >> ((r >> 32) % 30u));
+        const int32_t down = (int32_t)(((r >> 30) & 0x3fffffffu) >> ((r >> 40) % 30u));
+        const bool rising = ((r >> 63) != 0u);
+        const int32_t e0 = rising ? -down : up + 1;
+        const int32_t e1 = rising ? up + 1 : -down;
+        const uint32_t sh = (uint32_t)((r >> 50) % 16u);
+        n++;
+        bad += (batch_lanes_edge_duty(e0, e1, sh) != pwm_rt_edge_duty(e0, e1, sh)) ? 1u : 0u;
+    }
+    char what[160];
+    snprintf(what, sizeof what, "edge duty in lanes = pwm_rt_edge_duty() on %u edges (%u differ)",
+             n, bad);
+    check(bad == 0u, what);
+}
+
 int main(void) {
     const char *text = "duration 2\nat 0 n_rpm=1000\nat 0.3 n_rpm=400\n";
     scenario_error err;
@@ -126,5 +178,6 @@ int main(void) {
     printf("uuvsim batch's lane step against drive_fast_run(), %s build\n", UUV_NUMERIC_NAME);
     modulator_case(DRIVE_MODULATOR_SUBSTEP);
     modulator_case(DRIVE_MODULATOR_SAMPLED);
+    edge_duty_case();
     return check_finish();
 }
