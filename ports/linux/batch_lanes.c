@@ -66,7 +66,6 @@ typedef struct {
     bool tick;      /* the event tick's step follows them (in the same lanes) */
     bool lane;      /* the steps go in lanes */
     bool whole;     /* a whole frame in lanes (exec_desk_frame_end() after the steps) */
-    bool done;      /* a whole frame that left the real-time path, done on its own */
     bool taken;     /* already in a group this pass */
 } batch_plan;
 
@@ -83,18 +82,15 @@ void batch_step_all(exec *const *e, const uint32_t *most, size_t count) {
             p->lane = x[i]->desk_run == NULL && batch_lane_ready(&x[i]->drive) &&
                       exec_desk_tick_begin(x[i]) && batch_lane_ready(&x[i]->drive);
             p->whole = p->lane && exec_desk_frame_whole(x[i], begin, most[i0 + i]);
-            p->done = false;
             if (p->whole) {
+                /*
+                 * The release's tasks cannot take the drive off the real-time path: it
+                 * changes only at the latch (tested above) and at a slow
+                 * boundary (drive_segment.c: rt_path_set()), and the frame's
+                 * steps come before the next boundary.
+                 */
                 p->ahead = exec_desk_frame_begin(x[i]);
                 p->tick = false;
-                if (!batch_lane_ready(&x[i]->drive)) {
-                    /* The release's tasks left the real-time path: the frame's steps alone. */
-                    drive_fast_run(&x[i]->drive, p->ahead);
-                    exec_desk_frame_end(x[i], p->ahead);
-                    p->lane = false;
-                    p->whole = false;
-                    p->done = true;
-                }
             } else {
                 p->ahead = p->lane ? exec_desk_ahead(x[i], most[i0 + i]) : 0u;
                 p->tick = p->lane && p->ahead < most[i0 + i];
@@ -122,9 +118,6 @@ void batch_step_all(exec *const *e, const uint32_t *most, size_t count) {
             const batch_plan *p = &plan[i];
             if (p->whole) {
                 exec_desk_frame_end(x[i], p->ahead);
-                continue;
-            }
-            if (p->done) {
                 continue;
             }
             if (!p->lane) {
