@@ -156,7 +156,7 @@ run "host check_tables (exhaustive)" pass "$BUILD/tools/check_tables"
 run "host wavetable_data.c = generator" pass "$BUILD/tools/gen_wavetables" --check \
     src/fixedpoint/wavetable_data.c
 
-run "host linux-float leaps: AVX-512 and AVX2 forms" pass "$BUILD/linux-float/test_leap_forms"
+run "host linux-float leaps: edge maps, AVX-512 and AVX2 forms" pass "$BUILD/linux-float/test_leap_forms"
 run "host lint (cppcheck MISRA, clang-tidy)" pass sh tools/lint.sh
 # The desk's vector code in its portable form (no AVX2 leaps, the compiler's baseline lanes):
 # what a host without AVX2 and FMA, or an AArch64 one, builds.

@@ -84,8 +84,34 @@ typedef struct {
 #define T_AT(e, c, r) ((e)->m[(r) >> 3][c][(r) & 7])
 #define B_AT(e, c, i) ((e)->m[2][c][i])
 
+/*
+ * An edge step's map (edge_build()): the step of switch state s with leg
+ * x's duty d in [0, 1] instead of its state, the other legs held. The
+ * step is linear in z and quadratic in d, and d enters only through the
+ * inverter voltages (n v_dc / 3: the v_dc column) and the DC-link current's
+ * sum of the phases (rows v_dc and i_dc), so
+ *   y = A z + z_vdc d (b + d c) + d (rows 14, 15 of A z) in rows v_dc, i_dc,
+ * A the step at d = 0 (rows 0..10 the new states, 11..13 u_a, u_b, i_dc;
+ * rows 14, 15 the d terms of rows v_dc and i_dc of the other columns), b
+ * and c the v_dc column's terms in d and d^2. One product like a leap's:
+ * its chain is a leap's, where the step's own (v_dc, inverter, filter,
+ * DC-link current, v_dc) is about twice as long.
+ */
+#define R_U_A 11
+#define R_U_B 12
+#define R_IDC 13
+#define R_D_VDC 14
+#define R_D_IDC 15
+typedef struct {
+    leap_entry a;
+    double b[16] __attribute__((aligned(64)));
+    double c[16] __attribute__((aligned(64)));
+} edge_map;
+
 struct leap_tables {
     leap_entry e[NS][LEAP_K_MAX + 1u];
+    edge_map edge[NS][3];     /* per state at the step's start and edge leg */
+    bool have_edge[NS][3];
     double m[NS][NZ][NZ];     /* one step, column-major (m[c][r] = d out_r / d z_c) */
     double mo[NS][NZ][3];     /* one step's outputs */
     double qmax[NS][NZ][NB];  /* running max of |Q_m| */
@@ -114,12 +140,11 @@ static void key_of(const drive_segment *d, float key[NK]) {
     key[K_L] = d->k_l;
 }
 
-/* The legs' duties of switch state s: each leg's 0 or 1 (bit x: leg x high). */
-static void dq_of(unsigned s, double dq[3]) {
-    for (unsigned x = 0u; x < 3u; x++) {
-        dq[x] = (double)((s >> x) & 1u);
-    }
-}
+/* The legs' duties of each switch state s: each leg's 0 or 1 (bit x: leg x high). */
+static const double dq_tab[NS][3] = {
+    {0.0, 0.0, 0.0}, {1.0, 0.0, 0.0}, {0.0, 1.0, 0.0}, {1.0, 1.0, 0.0},
+    {0.0, 0.0, 1.0}, {1.0, 0.0, 1.0}, {0.0, 1.0, 1.0}, {1.0, 1.0, 1.0},
+};
 
 /*
  * The two filter phases side by side: lane 0 phase a, lane 1 phase b. The
@@ -129,6 +154,7 @@ static void dq_of(unsigned s, double dq[3]) {
  * arithmetic would give.
  */
 typedef double v2d __attribute__((vector_size(16)));
+typedef int64_t v2l __attribute__((vector_size(16))); /* v2d's comparisons */
 
 static inline v2d v2(double a, double b) {
     const v2d v = {a, b};
@@ -147,13 +173,20 @@ static inline v2d u_of(double v_dc, const double dq[3]) {
  * the inputs are entries of z), in the exact path's operations
  * (fast_tick_rt(), power_stage_nodes.h) without its roundings, for the
  * legs' duties dq (shares of the step, 0 to 1: a held state's 0 or 1, an
- * edge's fraction). out: the new z (inputs copied), outs: u_a, u_b, i_dc
- * of the step.
+ * edge's fraction): the new states (the two phases side by side), the
+ * DC link, and the step's outputs u_a, u_b, i_dc. step_put() writes them
+ * as a new z.
  */
+typedef struct {
+    v2d il, vc, id, jsh, im; /* the phases' new states */
+    v2d u;                   /* the step's inverter voltages */
+    double v_dc, i_dc;       /* the new DC link, the step's DC-link current */
+} step_out;
+
 static inline void step_d(const double kd[NK], const double dq[3], const double z[NZ],
-                          double out[NZ], double outs[3]) __attribute__((always_inline));
+                          step_out *o) __attribute__((always_inline));
 static inline void step_d(const double kd[NK], const double dq[3], const double z[NZ],
-                          double out[NZ], double outs[3]) {
+                          step_out *o) {
 #define KV(i) v2(kd[i], kd[i])
     const v2d dd = v2(dq[0], dq[1]) - v2(dq[2], dq[2]);
     const v2d u = u_of(z[Z_VDC], dq);
@@ -167,35 +200,47 @@ static inline void step_d(const double kd[NK], const double dq[3], const double 
     const v2d il = jl + KV(K_NEG_G_L) * dv;
     const v2d idn = (id + KV(K_NEG_A_D) * id) + KV(K_G_D) * dv;
     const v2d vcn = vc + dv;
-    const v2d jshn = ((il - im) - v2(2.0, 2.0) * idn) + KV(K_A_D) * idn;
-    const v2d imn = im + (vcn - v2(z[Z_E_A], z[Z_E_B])) * KV(K_L);
-    const v2d ti = dd * (i0 + il);
+    o->il = il;
+    o->vc = vcn;
+    o->id = idn;
+    o->jsh = ((il - im) - v2(2.0, 2.0) * idn) + KV(K_A_D) * idn;
+    o->im = im + (vcn - v2(z[Z_E_A], z[Z_E_B])) * KV(K_L);
+    o->u = u;
 #undef KV
-    for (int x = 0; x < 2; x++) {
-        out[z_il[x]] = il[x];
-        out[z_vc[x]] = vcn[x];
-        out[z_id[x]] = idn[x];
-        out[z_jsh[x]] = jshn[x];
-        out[Z_IF_A + x] = imn[x];
-        outs[x] = u[x];
-    }
+    const v2d ti = dd * (i0 + il);
     const double t = (0.0 + ti[0]) + ti[1]; /* the phases' sum as the scalar loop forms it */
-    const double i_dc = 0.5 * t;
-    out[Z_VDC] = z[Z_VDC] + (kd[K_KG] * (z[Z_EV] - z[Z_VDC]) + kd[K_NEG_K_C] * t); /* of the sum t */
-    out[Z_E_A] = z[Z_E_A];
-    out[Z_E_B] = z[Z_E_B];
-    out[Z_EV] = z[Z_EV];
-    outs[2] = i_dc;
+    o->i_dc = 0.5 * t;
+    o->v_dc = z[Z_VDC] + (kd[K_KG] * (z[Z_EV] - z[Z_VDC]) + kd[K_NEG_K_C] * t); /* of the sum t */
+}
+
+/* A step's new states into out (z's places 0..10; out may be z itself). */
+static inline void step_put(const step_out *o, double out[NZ]) {
+    for (int x = 0; x < 2; x++) {
+        out[z_il[x]] = o->il[x];
+        out[z_vc[x]] = o->vc[x];
+        out[z_id[x]] = o->id[x];
+        out[z_jsh[x]] = o->jsh[x];
+        out[Z_IF_A + x] = o->im[x];
+    }
+    out[Z_VDC] = o->v_dc;
 }
 
 /* The one-step map of state s, from the step on the unit vectors. */
 static void build_step(leap_tables *L, unsigned s) {
-    double dq[3];
-    dq_of(s, dq);
+    const double *dq = dq_tab[s];
     for (int c = 0; c < NZ; c++) {
         double z[NZ] = {0.0};
         z[c] = 1.0;
-        step_d(L->kd, dq, z, L->m[s][c], L->mo[s][c]);
+        step_out o;
+        step_d(L->kd, dq, z, &o);
+        double *out = L->m[s][c];
+        step_put(&o, out);
+        for (int i = NX; i < NZ; i++) {
+            out[i] = z[i]; /* the inputs, held */
+        }
+        L->mo[s][c][0] = o.u[0];
+        L->mo[s][c][1] = o.u[1];
+        L->mo[s][c][2] = o.i_dc;
     }
     L->have_m[s] = true;
 }
@@ -281,6 +326,54 @@ static void build_to(leap_tables *L, unsigned s, uint32_t k) {
     L->built[s] = k;
 }
 
+/* Rows 0..13 of an edge map's column: the step's new states, u_a, u_b, i_dc. */
+static void edge_col(const double kd[NK], const double dq[3], const double z[NZ], double col[16]) {
+    step_out o;
+    step_d(kd, dq, z, &o);
+    step_put(&o, col);
+    col[R_U_A] = o.u[0];
+    col[R_U_B] = o.u[1];
+    col[R_IDC] = o.i_dc;
+}
+
+/* The edge map of state s and leg x (edge_map) from the step on the unit vectors. */
+static void edge_build(leap_tables *L, unsigned s, unsigned x) __attribute__((noinline, cold));
+static void edge_build(leap_tables *L, unsigned s, unsigned x) {
+    edge_map *E = &L->edge[s][x];
+    memset(E, 0, sizeof *E);
+    double dq0[3] = {dq_tab[s][0], dq_tab[s][1], dq_tab[s][2]};
+    double dq1[3] = {dq0[0], dq0[1], dq0[2]};
+    double dqh[3] = {dq0[0], dq0[1], dq0[2]};
+    dq0[x] = 0.0;
+    dq1[x] = 1.0;
+    dqh[x] = 0.5;
+    for (int c = 0; c < NZ; c++) {
+        double z[NZ] = {0.0};
+        z[c] = 1.0;
+        double c0[16];
+        double c1[16];
+        edge_col(L->kd, dq0, z, c0);
+        edge_col(L->kd, dq1, z, c1);
+        for (int r = 0; r <= R_IDC; r++) {
+            T_AT(&E->a, c, r) = c0[r];
+        }
+        if (c == Z_VDC) {
+            /* A quadratic in d from its values at 0, 1/2 and 1. */
+            double ch[16];
+            edge_col(L->kd, dqh, z, ch);
+            for (int r = 0; r <= R_IDC; r++) {
+                E->b[r] = 4.0 * ch[r] - 3.0 * c0[r] - c1[r];
+                E->c[r] = 2.0 * c1[r] - 4.0 * ch[r] + 2.0 * c0[r];
+            }
+        } else {
+            /* Without v_dc no inverter voltage: d is only in the DC-link current's sum. */
+            T_AT(&E->a, c, R_D_VDC) = c1[Z_VDC] - c0[Z_VDC];
+            T_AT(&E->a, c, R_D_IDC) = c1[R_IDC] - c0[R_IDC];
+        }
+    }
+    L->have_edge[s][x] = true;
+}
+
 /* The tables follow the coefficients: built again from scratch when any changed. */
 static void tables_check(leap_tables *L, const drive_segment *d) {
     float key[NK];
@@ -296,6 +389,9 @@ static void tables_check(leap_tables *L, const drive_segment *d) {
     for (unsigned s = 0u; s < NS; s++) {
         L->built[s] = 0u;
         L->have_m[s] = false;
+        for (unsigned x = 0u; x < 3u; x++) {
+            L->have_edge[s][x] = false;
+        }
     }
     L->st.rebuilds++;
 }
@@ -308,10 +404,17 @@ static void tables_check(leap_tables *L, const drive_segment *d) {
  * The leg signs at grid points k..k + n of the frame in force (n <=
  * SCAN_MAX), as the exact path forms them (pwm_rt_ends()): bit j of leg[x] is e_x > 0 at point j,
  * at point k + j, e_x = r_x - c the leg's comparison; a step j has an edge when bit j and
- * bit j + 1 of some leg differ. Integer only: in AVX2 eight points at a
- * time where the build has it (the same integers), else a plain loop.
+ * bit j + 1 of some leg differ. The comparisons themselves go to e[x][j]
+ * (pwm_rt_e_at()'s integers, for the edge steps' duties). Integer only: in
+ * AVX2 eight points at a time where the build has it (the same integers),
+ * else a plain loop.
  */
-static void scan_signs(const pwm_rt *p, uint32_t k, uint32_t n, uint64_t leg[3]) {
+typedef struct {
+    uint64_t leg[3];                                      /* the signs, a bit per point */
+    int32_t e[3][SCAN_MAX + 1u] __attribute__((aligned(32))); /* the comparisons */
+} scan_t;
+
+static void scan_signs(const pwm_rt *p, uint32_t k, uint32_t n, scan_t *sc) {
     const pwm_rt_frame *f = &p->fr[pwm_rt_cur(p)];
     const uint32_t inc = p->inc_c;
     const uint32_t ph0 = f->ph0 + k * inc;
@@ -346,6 +449,7 @@ static void scan_signs(const pwm_rt *p, uint32_t k, uint32_t n, uint64_t leg[3])
         const __m256i ec = _mm256_sub_epi32(_mm256_sub_epi32(_mm256_sub_epi32(zero, ra), rb), c);
         const __m256i e[3] = {ea, eb, ec};
         for (int l = 0; l < 3; l++) {
+            _mm256_store_si256((__m256i *)(void *)&sc->e[l][j], e[l]);
             const int bits = _mm256_movemask_ps(_mm256_castsi256_ps(_mm256_cmpgt_epi32(e[l], zero)));
             m[l] |= (uint64_t)(uint32_t)bits << j;
         }
@@ -361,15 +465,17 @@ static void scan_signs(const pwm_rt *p, uint32_t k, uint32_t n, uint64_t leg[3])
         const int32_t c = (int32_t)y - PWM_RT_ONE;
         const int32_t ra = (int32_t)(r0a + j * dra);
         const int32_t rb = (int32_t)(r0b + j * drb);
-        m[0] |= (uint64_t)(ra - c > 0) << j;
-        m[1] |= (uint64_t)(rb - c > 0) << j;
-        m[2] |= (uint64_t)(-ra - rb - c > 0) << j;
+        const int32_t e[3] = {ra - c, rb - c, -ra - rb - c};
+        for (int l = 0; l < 3; l++) {
+            sc->e[l][j] = e[l];
+            m[l] |= (uint64_t)(e[l] > 0) << j;
+        }
     }
 #endif
     /* Points past n (the last block's) dropped: n + 1 <= 64 points. */
     const uint64_t keep = (n >= 63u) ? ~(uint64_t)0 : (((uint64_t)1 << (n + 1u)) - 1u);
     for (int l = 0; l < 3; l++) {
-        leg[l] = m[l] & keep;
+        sc->leg[l] = m[l] & keep;
     }
 }
 
@@ -427,6 +533,15 @@ static inline void block8(const double (*m)[8], const double *z, bool magnitude,
 #endif
 
 #if LEAP_AVX2
+/* y = T z (16 rows) of entry en, a block of eight rows at a time: the empty asm keeps the
+ * compiler from holding one block's broadcasts of z for the next (more registers than x86-64
+ * has). The 512-bit form (product16_512()) has the same bits. */
+static inline void product_only(const leap_entry *en, const double *z, double *y) {
+    block8(en->m[0], z, false, y);
+    __asm__ volatile("" : : "r"(z) : "memory");
+    block8(en->m[1], z, false, y + 8);
+}
+
 /* The largest of each lane's four values, in every lane. */
 static inline __m256d hmax4(__m256d v) {
     const __m256d h = _mm256_max_pd(v, _mm256_permute2f128_pd(v, v, 1));
@@ -455,11 +570,7 @@ static inline bool bound_in(const double *z, const double *y, const __m256d bnd[
  * z: 16 values, the last two zero.
  */
 static bool product_bounded_256(const leap_entry *en, const double *z, double *y) {
-    /* A block at a time: the empty asm keeps the compiler from holding one block's
-     * broadcasts of z for the next (more registers than x86-64 has). */
-    block8(en->m[0], z, false, y);
-    __asm__ volatile("" : : "r"(z) : "memory");
-    block8(en->m[1], z, false, y + 8);
+    product_only(en, z, y);
     __asm__ volatile("" : : "r"(z) : "memory");
     const __m256d mag = _mm256_castsi256_pd(_mm256_set1_epi64x(0x7FFFFFFFFFFFFFFF));
     __m256d zi = _mm256_setzero_pd();
@@ -510,7 +621,8 @@ static inline bool bound_in512(const double *z, const double *y, __m512d bnd) {
     return _mm512_cmp_pd_mask(hi, _mm512_load_pd(bound_lim), _CMP_LE_OQ) == 0xFF;
 }
 
-static bool product_bounded_512(const leap_entry *en, const double *z, double *y) {
+/* T z of entry en: rows 0..7 in *y0, rows 8..15 in *y1 (AVX2's sums, product_bounded_256()). */
+static inline void product16_512(const leap_entry *en, const double *z, __m512d *y0, __m512d *y1) {
     __m512d lo[4];
     __m512d hi[4];
 #pragma GCC unroll 16
@@ -525,8 +637,16 @@ static bool product_bounded_512(const leap_entry *en, const double *z, double *y
             hi[q] = _mm512_fmadd_pd(_mm512_load_pd(en->m[1][c]), zc, hi[q]);
         }
     }
-    _mm512_store_pd(y, sum4_512(lo));
-    _mm512_store_pd(y + 8, sum4_512(hi));
+    *y0 = sum4_512(lo);
+    *y1 = sum4_512(hi);
+}
+
+static bool product_bounded_512(const leap_entry *en, const double *z, double *y) {
+    __m512d y0;
+    __m512d y1;
+    product16_512(en, z, &y0, &y1);
+    _mm512_store_pd(y, y0);
+    _mm512_store_pd(y + 8, y1);
     /* The largest |z| of each kind (z's 16 places: two vectors; volt_mask's voltages). */
     const __m512i vm0 = _mm512_load_si512((const void *)volt_mask);
     const __m512i vm1 = _mm512_load_si512((const void *)(volt_mask + 8));
@@ -554,6 +674,37 @@ static bool product_bounded_512(const leap_entry *en, const double *z, double *y
     return bound_in512(z, y, sum4_512(b));
 }
 
+#endif
+#else
+/* y = T z (16 rows) and bnd = B |z| (8 rows) of entry en (in the leap's line: inlined). */
+static inline void product(const leap_entry *en, const double *z, double *y, double *bnd)
+    __attribute__((always_inline));
+static inline void product(const leap_entry *en, const double *z, double *y, double *bnd) {
+    for (int r = 0; r < NR; r++) {
+        y[r] = 0.0;
+    }
+    for (int r = 0; r < NB; r++) {
+        bnd[r] = 0.0;
+    }
+    for (int c = 0; c < NZ; c++) {
+        const double zc = z[c];
+        const double ac = fabs(zc);
+        for (int r = 0; r < NR; r++) {
+            y[r] += T_AT(en, c, r) * zc;
+        }
+        for (int r = 0; r < NB; r++) {
+            bnd[r] += B_AT(en, c, r) * ac;
+        }
+    }
+}
+
+/* y = T z (16 rows) of entry en (the bound's rows computed and dropped: the edge maps' check). */
+static inline void product_only(const leap_entry *en, const double *z, double *y) {
+    double bnd[NB];
+    product(en, z, y, bnd);
+}
+#endif
+
 /* xorshift64: a fixed sequence of test values. */
 static uint64_t forms_next(uint64_t *x) {
     *x ^= *x << 13;
@@ -567,6 +718,62 @@ static double forms_value(uint64_t *x, double scale) {
     return scale * ((double)(forms_next(x) >> 11) * 0x1p-52 - 1.0);
 }
 
+/*
+ * An edge map's y for the duty dq (edge_map), after its product A z: the
+ * v_dc column's terms in d and d^2, then the d terms of rows v_dc and i_dc
+ * (each a product then a sum, in every form).
+ */
+static inline void edge_fix(const edge_map *E, double zv, double dq, double *y) {
+    for (int i = 0; i < 16; i++) {
+        y[i] = y[i] + zv * (dq * (E->b[i] + dq * E->c[i]));
+    }
+    y[Z_VDC] = y[Z_VDC] + dq * y[R_D_VDC];
+    y[R_IDC] = y[R_IDC] + dq * y[R_D_IDC];
+}
+
+/* The edge step's y (16 rows) and whether rows 0..7 are within bound_lim (false for a NaN too),
+ * in the build's product form: the 512-bit form's reference (leap_forms_check()) and the map's
+ * against the step (leap_edge_check()). */
+static bool edge_bounded_plain(const edge_map *E, const double *z, double dq, double *y) {
+    product_only(&E->a, z, y);
+    edge_fix(E, z[Z_VDC], dq, y);
+    bool ok = true;
+    for (int i = 0; i < NB; i++) {
+        ok &= (fabs(y[i]) <= bound_lim[i]);
+    }
+    return ok;
+}
+
+#if LEAP_AVX512
+/*
+ * edge_bounded_plain() in 512-bit vectors, in registers from the product
+ * to the verdict (the same operations lane by lane: the same bits,
+ * leap_forms_check()).
+ */
+static bool edge_bounded_512(const edge_map *E, const double *z, double dq, double *y) {
+    __m512d y0;
+    __m512d y1;
+    product16_512(&E->a, z, &y0, &y1);
+    const __m512d d = _mm512_set1_pd(dq);
+    const __m512d zv = _mm512_set1_pd(z[Z_VDC]);
+    const __m512d w0 = _mm512_mul_pd(
+        d, _mm512_add_pd(_mm512_load_pd(E->b), _mm512_mul_pd(d, _mm512_load_pd(E->c))));
+    const __m512d w1 = _mm512_mul_pd(
+        d, _mm512_add_pd(_mm512_load_pd(E->b + 8), _mm512_mul_pd(d, _mm512_load_pd(E->c + 8))));
+    y0 = _mm512_add_pd(y0, _mm512_mul_pd(zv, w0));
+    y1 = _mm512_add_pd(y1, _mm512_mul_pd(zv, w1));
+    /* Row v_dc (lane 6 of y0) takes row 14 (lane 6 of y1), row i_dc (lane 5 of y1) row 15. */
+    y0 = _mm512_mask_add_pd(y0, (__mmask8)(1u << Z_VDC), y0, _mm512_mul_pd(d, y1));
+    const __m512i up2 = _mm512_set_epi64(7, 6, 7, 4, 3, 2, 1, 0);
+    y1 = _mm512_mask_add_pd(y1, (__mmask8)(1u << (R_IDC - 8)), y1,
+                            _mm512_mul_pd(d, _mm512_permutexvar_pd(up2, y1)));
+    _mm512_store_pd(y, y0);
+    _mm512_store_pd(y + 8, y1);
+    return bound_in512(y, y, _mm512_setzero_pd());
+}
+#endif
+
+#if LEAP_AVX512
 long leap_forms_check(uint32_t n, uint32_t *accepted) {
     static leap_entry en;
     double z[16] __attribute__((aligned(64)));
@@ -596,34 +803,22 @@ long leap_forms_check(uint32_t n, uint32_t *accepted) {
         const bool a = product_bounded_256(&en, z, y0);
         const bool b = product_bounded_512(&en, z, y1);
         differ += (a != b || memcmp(y0, y1, sizeof y0) != 0) ? 1 : 0;
+        /* The edge step's two forms on the same matrix as an edge map's A. */
+        static edge_map em;
+        em.a = en;
+        for (int r = 0; r < 16; r++) {
+            em.b[r] = forms_value(&x, 0.05);
+            em.c[r] = forms_value(&x, 0.01);
+        }
+        const double dq = 0.5 + forms_value(&x, 0.5);
+        const bool ea = edge_bounded_plain(&em, z, dq, y0);
+        const bool eb = edge_bounded_512(&em, z, dq, y1);
+        differ += (ea != eb || memcmp(y0, y1, sizeof y0) != 0) ? 1 : 0;
         *accepted += a ? 1u : 0u;
     }
     return differ;
 }
-#endif
 #else
-/* y = T z (16 rows) and bnd = B |z| (8 rows) of entry en. */
-static void product(const leap_entry *en, const double *z, double *y, double *bnd) {
-    for (int r = 0; r < NR; r++) {
-        y[r] = 0.0;
-    }
-    for (int r = 0; r < NB; r++) {
-        bnd[r] = 0.0;
-    }
-    for (int c = 0; c < NZ; c++) {
-        const double zc = z[c];
-        const double ac = fabs(zc);
-        for (int r = 0; r < NR; r++) {
-            y[r] += T_AT(en, c, r) * zc;
-        }
-        for (int r = 0; r < NB; r++) {
-            bnd[r] += B_AT(en, c, r) * ac;
-        }
-    }
-}
-#endif
-
-#if !LEAP_AVX512
 /* One form of the product in this build: nothing to compare (leap.h). */
 long leap_forms_check(uint32_t n, uint32_t *accepted) {
     (void)n;
@@ -697,9 +892,7 @@ static void run_store(const run_z *r, drive_segment *d) {
         ps->u[1] = (float)r->u[1];
     } else {
         /* A leap's last step: its inverter voltages as the step forms them from its v_dc. */
-        double dq[3];
-        dq_of(r->s, dq);
-        const v2d u = u_of(r->v_dc, dq);
+        const v2d u = u_of(r->v_dc, dq_tab[r->s]);
         ps->u[0] = (float)u[0];
         ps->u[1] = (float)u[1];
     }
@@ -760,68 +953,145 @@ static bool leap_take(leap_tables *L, run_z *r, unsigned s, uint32_t k) {
 }
 
 /*
+ * A step in double taken (its new state already in r->z): the frame sums
+ * of its new v_C a, v_C b and v_dc, its outputs, the legs' states sb at its end.
+ */
+static inline void step_taken(leap_tables *L, run_z *r, unsigned sb, double v_a, double v_b,
+                              double v_dc, double u_a, double u_b, double i_dc) {
+    r->sum[0] += v_a;
+    r->sum[1] += v_b;
+    r->sum[2] += v_dc;
+    r->u[0] = u_a;
+    r->u[1] = u_b;
+    r->i_dc = i_dc;
+    r->s = sb;
+    r->u_valid = true;
+    r->taken++;
+    r->stepped = true;
+    L->st.dsteps++;
+}
+
+/* The duty of leg x in the step at the scan's point j, as the stage takes it (ps_fast_legs_f32(): a
+ * float share of the step) of pwm_rt_edge_duty(). */
+static inline double edge_duty(const drive_segment *d, const scan_t *sc, uint32_t j, unsigned x) {
+    return (double)((float)pwm_rt_edge_duty(sc->e[x][j], sc->e[x][j + 1u], d->rt.den_sh) *
+                    (1.0f / 32768.0f));
+}
+
+#if LEAP_AVX512
+/*
+ * step_take() of a step in which one leg has an edge, by its edge map
+ * (edge_map: the same step in other roundings; the builds without AVX-512
+ * take the step itself, as fast there: leap.h).
+ */
+static bool edge_take(leap_tables *L, const drive_segment *d, run_z *r, unsigned sa, unsigned sb,
+                      const scan_t *sc, uint32_t j) {
+    const unsigned x = (unsigned)__builtin_ctz(sa ^ sb);
+    if (!L->have_edge[sa][x]) {
+        edge_build(L, sa, x);
+    }
+    const edge_map *E = &L->edge[sa][x];
+    const double dq = edge_duty(d, sc, j, x);
+    double *y = r->y;
+    if (!edge_bounded_512(E, r->z, dq, y)) {
+        return false;
+    }
+    for (int c = 0; c < NX; c++) {
+        r->z[c] = y[c];
+    }
+    step_taken(L, r, sb, y[Z_VC_A], y[Z_VC_B], y[Z_VDC], y[R_U_A], y[R_U_B], y[R_IDC]);
+    return true;
+}
+#endif
+
+double leap_edge_check(uint32_t n) {
+    void *mem = NULL;
+    if (posix_memalign(&mem, 64u, sizeof(leap_tables)) != 0) {
+        return -1.0;
+    }
+    leap_tables *L = mem;
+    uint64_t x = 0x2545F4914F6CDD1Du;
+    double worst = 0.0;
+    for (uint32_t i = 0u; i < n; i++) {
+        if (i % 64u == 0u) {
+            /* Coefficients of the step's sizes and signs, new every 64 cases. */
+            const double scale[NK] = {-1e-3, 1e-2, -0.5, 1e-2, 0.5, -0.5, 0.5, -1e-3, 1e-3, 1e-3};
+            for (int k = 0; k < NK; k++) {
+                L->kd[k] = scale[k] * (1.5 + forms_value(&x, 0.5));
+            }
+            memset(L->have_edge, 0, sizeof L->have_edge);
+        }
+        const unsigned s = (unsigned)(forms_next(&x) % NS);
+        const unsigned leg = (unsigned)(forms_next(&x) % 3u);
+        const double dq = 0.5 + forms_value(&x, 0.5);
+        double z[16] __attribute__((aligned(64))) = {0.0};
+        for (int c = 0; c < NZ; c++) {
+            z[c] = forms_value(&x, z_volt(c) ? 1000.0 : 250.0);
+        }
+        if (!L->have_edge[s][leg]) {
+            edge_build(L, s, leg);
+        }
+        double y[16] __attribute__((aligned(64)));
+        (void)edge_bounded_plain(&L->edge[s][leg], z, dq, y);
+        double dv[3] = {dq_tab[s][0], dq_tab[s][1], dq_tab[s][2]};
+        dv[leg] = dq;
+        double ref[16];
+        edge_col(L->kd, dv, z, ref);
+        double big = 0.0;
+        double diff = 0.0;
+        for (int r = 0; r <= R_IDC; r++) {
+            big = fmax(big, fabs(ref[r]));
+            diff = fmax(diff, fabs(y[r] - ref[r]));
+        }
+        worst = fmax(worst, diff / big);
+    }
+    free(L);
+    return worst;
+}
+
+/*
  * One step on the run's state in double (step_d()), from the legs' states
  * sa at its start to sb at its end (scan_signs()'s signs), if no clamped
  * component comes near its limit (the bound's limits, bound_lim): returns
  * false, the run and the modulator unchanged, otherwise. The duties are
  * the modulator's (pwm_rt_substep_each()'s, by pwm_rt_duty()): a leg whose
  * sign does not change holds it over the step (duty 0 or 1), a leg whose
- * sign changes has pwm_rt_edge_duty() of the step's ends (pwm_rt_e_at() at
- * the step's count and the next, which are pwm_rt_ends()'s).
+ * sign changes has pwm_rt_edge_duty() of the step's ends (e0, e1: the
+ * scan's comparisons at the step's count and the next, pwm_rt_e_at()'s
+ * and so pwm_rt_ends()'s).
  */
-static bool step_take(leap_tables *L, drive_segment *d, run_z *r, unsigned sa, unsigned sb) {
-    const pwm_rt *p = &d->rt;
+static bool step_take(leap_tables *L, const drive_segment *d, run_z *r, unsigned sa, unsigned sb,
+                      const scan_t *sc, uint32_t j) {
     const unsigned edge = sa ^ sb;
-    double dq[3];
-    dq_of(sa, dq);
-    if (edge != 0u) {
-        const pwm_rt_frame *f = &p->fr[pwm_rt_cur(p)];
-        const uint32_t k = pwm_rt_k(p) + r->taken;
-        int32_t e0[3];
-        int32_t e1[3];
-        pwm_rt_e_at(f, p->inc_c, k, e0);
-        pwm_rt_e_at(f, p->inc_c, k + 1u, e1);
-        for (unsigned x = 0u; x < 3u; x++) {
-            if (((edge >> x) & 1u) != 0u) {
-                /* The duty as the stage takes it (ps_fast_legs_f32(): a float share of the step). */
-                dq[x] = (double)((float)pwm_rt_edge_duty(e0[x], e1[x], p->den_sh) *
-                                 (1.0f / 32768.0f));
-            }
-        }
-    }
-    double out[16] __attribute__((aligned(64)));
-    double outs[3];
-    step_d(L->kd, dq, r->z, out, outs);
-#if LEAP_AVX2
-    const __m256d mag = _mm256_castsi256_pd(_mm256_set1_epi64x(0x7FFFFFFFFFFFFFFF));
-    const __m256d in0 = _mm256_cmp_pd(_mm256_and_pd(_mm256_load_pd(out), mag),
-                                      _mm256_load_pd(bound_lim), _CMP_LE_OQ);
-    const __m256d in1 = _mm256_cmp_pd(_mm256_and_pd(_mm256_load_pd(out + 4), mag),
-                                      _mm256_load_pd(bound_lim + 4), _CMP_LE_OQ);
-    const bool ok = _mm256_movemask_pd(_mm256_and_pd(in0, in1)) == 0xF; /* false for a NaN too */
-#else
-    bool ok = true;
-    for (int i = 0; i < NB; i++) {
-        ok &= (fabs(out[i]) <= bound_lim[i]); /* false for a NaN too */
+#if LEAP_AVX512
+    if (edge != 0u && (edge & (edge - 1u)) == 0u) {
+        return edge_take(L, d, r, sa, sb, sc, j); /* one leg's edge: its edge map (leap.h) */
     }
 #endif
-    if (!ok) {
+    double dq[3] = {dq_tab[sa][0], dq_tab[sa][1], dq_tab[sa][2]};
+    for (unsigned x = 0u; x < 3u; x++) {
+        if (((edge >> x) & 1u) != 0u) {
+            /* The duty as the stage takes it (ps_fast_legs_f32(): a float share of the step). */
+            dq[x] = edge_duty(d, sc, j, x);
+        }
+    }
+    step_out o;
+    step_d(L->kd, dq, r->z, &o);
+    /* The clamped components within bound_lim (and j_sh a not a NaN: its limit is infinite);
+     * false for a NaN too. */
+    const v2d li = v2(bound_lim[Z_IL_A], bound_lim[Z_IL_B]);
+    const v2d lv = v2(bound_lim[Z_VC_A], bound_lim[Z_VC_B]);
+    const v2d lh = v2(bound_lim[Z_JSH_A], HUGE_VAL);
+    const v2d ld = v2(bound_lim[Z_VDC], bound_lim[Z_VDC]);
+    const v2d vd = v2(o.v_dc, o.v_dc);
+    const v2l in = (o.il <= li) & (o.il >= -li) & (o.id <= li) & (o.id >= -li) &
+                   (o.vc <= lv) & (o.vc >= -lv) & (vd <= ld) & (vd >= -ld) & (o.jsh <= lh) &
+                   (o.jsh >= -lh);
+    if ((in[0] & in[1]) == 0) {
         return false;
     }
-    for (int c = 0; c < NX; c++) {
-        r->z[c] = out[c];
-    }
-    r->sum[0] += out[Z_VC_A];
-    r->sum[1] += out[Z_VC_B];
-    r->sum[2] += out[Z_VDC];
-    r->u[0] = outs[0];
-    r->u[1] = outs[1];
-    r->i_dc = outs[2];
-    r->s = sb;
-    r->u_valid = true;
-    r->taken++;
-    r->stepped = true;
-    L->st.dsteps++;
+    step_put(&o, r->z);
+    step_taken(L, r, sb, o.vc[0], o.vc[1], o.v_dc, o.u[0], o.u[1], o.i_dc);
     return true;
 }
 
@@ -845,16 +1115,19 @@ static void ordinary(leap_tables *L, drive_segment *d, uint32_t n) {
  * One step of the run from the legs' states sa to sb: in double, or (near a
  * clamp) an ordinary step on the drive's state.
  */
-static void step_one(leap_tables *L, drive_segment *d, run_z *r, unsigned sa, unsigned sb) {
-    if (!step_take(L, d, r, sa, sb)) {
+static void step_one(leap_tables *L, drive_segment *d, run_z *r, unsigned sa, unsigned sb,
+                     const scan_t *sc, uint32_t j) {
+    if (!step_take(L, d, r, sa, sb, sc, j)) {
         run_store(r, d);
         ordinary(L, d, 1u);
         run_load(r, d);
     }
 }
 
-/* A stretch of k steps with no edge in switch state s: leaps, or steps one by one. */
-static void stretch(leap_tables *L, drive_segment *d, run_z *r, unsigned s, uint32_t k) {
+/* A stretch of k steps with no edge in switch state s, from the scan's point j: leaps, or
+ * steps one by one. */
+static void stretch(leap_tables *L, drive_segment *d, run_z *r, unsigned s, uint32_t k,
+                    const scan_t *sc, uint32_t j) {
     while (k >= LEAP_K_MIN) {
         uint32_t m = (k < LEAP_K_MAX) ? k : LEAP_K_MAX;
         while (m >= LEAP_K_MIN && !leap_take(L, r, s, m)) {
@@ -866,7 +1139,7 @@ static void stretch(leap_tables *L, drive_segment *d, run_z *r, unsigned s, uint
         k -= m;
     }
     for (; k > 0u; k--) {
-        step_one(L, d, r, s, s);
+        step_one(L, d, r, s, s, sc, j); /* no edge: the comparisons are not read */
     }
 }
 
@@ -882,8 +1155,9 @@ static void leap_run(void *ctx, drive_segment *d, uint32_t n) {
     uint32_t done = 0u;
     while (done < n) {
         const uint32_t m = (n - done < SCAN_MAX) ? n - done : SCAN_MAX;
-        uint64_t leg[3];
-        scan_signs(&d->rt, pwm_rt_k(&d->rt) + r.taken, m, leg);
+        scan_t sc;
+        scan_signs(&d->rt, pwm_rt_k(&d->rt) + r.taken, m, &sc);
+        const uint64_t *leg = sc.leg;
         /* Bit j: step j (j < m) has an edge. */
         const uint64_t edges = ((leg[0] ^ (leg[0] >> 1)) | (leg[1] ^ (leg[1] >> 1)) |
                                 (leg[2] ^ (leg[2] >> 1))) &
@@ -895,11 +1169,11 @@ static void leap_run(void *ctx, drive_segment *d, uint32_t n) {
             uint32_t i = (ahead != 0u) ? j + (uint32_t)__builtin_ctzll(ahead) : m;
             /* Steps j..i-1 hold the legs' states s; step i (if i < m) has an edge. */
             if (i > j) {
-                stretch(L, d, &r, s, i - j);
+                stretch(L, d, &r, s, i - j, &sc, j);
             }
             if (i < m) {
                 const unsigned sb = signs_at(leg, i + 1u);
-                step_one(L, d, &r, s, sb);
+                step_one(L, d, &r, s, sb, &sc, i);
                 s = sb;
                 i++;
             }
@@ -967,6 +1241,11 @@ long leap_forms_check(uint32_t n, uint32_t *accepted) {
     (void)n;
     *accepted = 0u;
     return -1;
+}
+
+double leap_edge_check(uint32_t n) {
+    (void)n;
+    return -1.0;
 }
 
 #endif

@@ -27,7 +27,16 @@
  * step (the one the tables are built from) with the legs' duties the
  * modulator gives it, a held leg's 0 or 1, an edge's share of the step
  * (pwm_rt_ends(), pwm_rt_duty()), taken when none of its clamped
- * components comes within 0.1 % of its clamp. A run keeps z in double from
+ * components comes within 0.1 % of its clamp. Where the build has
+ * AVX-512, a step in which one leg has an edge takes that step's edge
+ * map instead (per switch state and edge leg, built from the step on the
+ * unit vectors like the tables): the step is linear in z and quadratic in
+ * the edge's duty d, which enters only through the inverter voltages (the
+ * v_dc column) and the DC-link current's sum of the phases, so it is one
+ * product like a leap's and two small corrections, whose chain of
+ * dependent operations is about half the step's; elsewhere (AVX2, plain
+ * loops) the step itself is as fast, and takes it. The map's values are
+ * the step's within rounding (leap_edge_check()). A run keeps z in double from
  * its start to its end: the drive's float state is formed once, at the
  * run's end, with the frame sums over the run and the last step's inverter
  * voltages and DC-link current. A step near a clamp (the exact path's
@@ -106,5 +115,14 @@ leap_stats leap_stats_of(const exec *e);
  * verdicts that allowed the leap. -1 where the build has one form only.
  */
 long leap_forms_check(uint32_t n, uint32_t *accepted);
+
+/*
+ * The edge maps (leap.c) against the step they are built from, on n
+ * cases of a fixed test sequence (coefficients, switch state, edge leg,
+ * duty and state): the largest difference of the map's new state and
+ * outputs from the step's, relative to the largest of the step's. -1 in
+ * the fixed build (no leaps) or without the memory.
+ */
+double leap_edge_check(uint32_t n);
 
 #endif /* UUV_LEAP_H */
