@@ -21,10 +21,17 @@ enum {
 #define NX 11 /* the state part of z; the rest are inputs held over a leap */
 #define NCLAMP 7 /* z[0..6] are clamped (leap.h) */
 
-/* Whether z's component c is a voltage (else a current): the coarse bound's two kinds. */
-static bool z_volt(int c) {
-    return c == Z_VC_A || c == Z_VC_B || c == Z_VDC || c == Z_E_A || c == Z_E_B || c == Z_EV;
-}
+/*
+ * All bits set where z's component is a voltage (else a current: the
+ * coarse bound's two kinds), over z's 16 padded places: v_C a, v_C b, v_dc,
+ * e_a, e_b, e_v. The AVX forms load it as a mask.
+ */
+static const int64_t volt_mask[16] __attribute__((aligned(64))) = {
+    [Z_VC_A] = -1, [Z_VC_B] = -1, [Z_VDC] = -1, [Z_E_A] = -1, [Z_E_B] = -1, [Z_EV] = -1,
+};
+
+/* Whether z's component c is a voltage (volt_mask). */
+static bool z_volt(int c) { return volt_mask[c] != 0; }
 
 /* A filter phase's components in z. */
 static const int z_il[2] = {Z_IL_A, Z_IL_B};
@@ -494,11 +501,6 @@ static const double bound_lim[NB] __attribute__((aligned(64))) = {
 };
 
 #if LEAP_AVX2
-/* All bits set where z's component is a voltage (z_volt()), over z's 16 padded places. */
-static const int64_t volt_mask[16] __attribute__((aligned(64))) = {
-    0, -1, 0, 0, -1, 0, -1, 0, 0, 0, 0, -1, -1, -1, 0, 0,
-};
-
 /*
  * out = M z for a block of eight rows (magnitude: M |z|), as four sums (the
  * columns by their index mod 4) added in a tree, so that each chain of
