@@ -232,22 +232,32 @@ static inline void step_put(const step_out *o, double out[NZ]) {
     out[Z_VDC] = o->v_dc;
 }
 
+/*
+ * One step on z as a column (the tables' and the edge maps' building
+ * block): rows 0..10 the new states, then u_a, u_b, i_dc (R_U_A..R_IDC).
+ */
+static void step_col(const double kd[NK], const double dq[3], const double z[NZ], double col[16]) {
+    step_out o;
+    step_d(kd, dq, z, &o);
+    step_put(&o, col);
+    col[R_U_A] = o.u[0];
+    col[R_U_B] = o.u[1];
+    col[R_IDC] = o.i_dc;
+}
+
 /* The one-step map of state s, from the step on the unit vectors. */
 static void build_step(leap_tables *L, unsigned s) {
-    const double *dq = dq_tab[s];
     for (int c = 0; c < NZ; c++) {
         double z[NZ] = {0.0};
         z[c] = 1.0;
-        step_out o;
-        step_d(L->kd, dq, z, &o);
-        double *out = L->m[s][c];
-        step_put(&o, out);
-        for (int i = NX; i < NZ; i++) {
-            out[i] = z[i]; /* the inputs, held */
+        double col[16];
+        step_col(L->kd, dq_tab[s], z, col);
+        for (int i = 0; i < NZ; i++) {
+            L->m[s][c][i] = (i < NX) ? col[i] : z[i]; /* the inputs, held */
         }
-        L->mo[s][c][0] = o.u[0];
-        L->mo[s][c][1] = o.u[1];
-        L->mo[s][c][2] = o.i_dc;
+        for (int i = 0; i < 3; i++) {
+            L->mo[s][c][i] = col[R_U_A + i];
+        }
     }
     L->have_m[s] = true;
 }
@@ -333,16 +343,6 @@ static void build_to(leap_tables *L, unsigned s, uint32_t k) {
     L->built[s] = k;
 }
 
-/* Rows 0..13 of an edge map's column: the step's new states, u_a, u_b, i_dc. */
-static void edge_col(const double kd[NK], const double dq[3], const double z[NZ], double col[16]) {
-    step_out o;
-    step_d(kd, dq, z, &o);
-    step_put(&o, col);
-    col[R_U_A] = o.u[0];
-    col[R_U_B] = o.u[1];
-    col[R_IDC] = o.i_dc;
-}
-
 /* The edge map of state s and leg x (edge_map) from the step on the unit vectors. */
 static void edge_build(leap_tables *L, unsigned s, unsigned x) __attribute__((noinline, cold));
 static void edge_build(leap_tables *L, unsigned s, unsigned x) {
@@ -359,15 +359,15 @@ static void edge_build(leap_tables *L, unsigned s, unsigned x) {
         z[c] = 1.0;
         double c0[16];
         double c1[16];
-        edge_col(L->kd, dq0, z, c0);
-        edge_col(L->kd, dq1, z, c1);
+        step_col(L->kd, dq0, z, c0);
+        step_col(L->kd, dq1, z, c1);
         for (int r = 0; r <= R_IDC; r++) {
             T_AT(&E->a, c, r) = c0[r];
         }
         if (c == Z_VDC) {
             /* A quadratic in d from its values at 0, 1/2 and 1. */
             double ch[16];
-            edge_col(L->kd, dqh, z, ch);
+            step_col(L->kd, dqh, z, ch);
             for (int r = 0; r <= R_IDC; r++) {
                 E->b[r] = 4.0 * ch[r] - 3.0 * c0[r] - c1[r];
                 E->c[r] = 2.0 * c1[r] - 4.0 * ch[r] + 2.0 * c0[r];
@@ -984,7 +984,7 @@ static inline double edge_duty(const drive_segment *d, const scan_t *sc, uint32_
 /*
  * step_take() of a step in which one leg has an edge, by its edge map
  * (edge_map: the same step in other roundings; the builds without AVX-512
- * take the step itself, as fast there: leap.h).
+ * take the step itself, faster there: leap.h).
  */
 static bool edge_take(leap_tables *L, const drive_segment *d, run_z *r, unsigned sa, unsigned sb,
                       const scan_t *sc, uint32_t j) {
@@ -1038,7 +1038,7 @@ double leap_edge_check(uint32_t n) {
         double dv[3] = {dq_tab[s][0], dq_tab[s][1], dq_tab[s][2]};
         dv[leg] = dq;
         double ref[16];
-        edge_col(L->kd, dv, z, ref);
+        step_col(L->kd, dv, z, ref);
         double big = 0.0;
         double diff = 0.0;
         for (int r = 0; r <= R_IDC; r++) {
